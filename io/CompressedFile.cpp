@@ -1,0 +1,110 @@
+#include "CompressedFile.hpp"
+
+#include "InputError.hpp"
+
+#include <zlib.h>
+
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace rbm::io {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path withGzSuffix(const fs::path& path)
+{
+    return fs::path(path.string() + ".gz");
+}
+
+bool looksGzipped(const std::string& bytes)
+{
+    return bytes.size() >= 2 && static_cast<unsigned char>(bytes[0]) == 0x1f && static_cast<unsigned char>(bytes[1]) == 0x8b;
+}
+
+std::string gunzip(const std::string& compressed, const fs::path& path)
+{
+    z_stream stream{};
+    // 16 + MAX_WBITS: expect a gzip header (not raw zlib).
+    if (inflateInit2(&stream, 16 + MAX_WBITS) != Z_OK) throw InputError(path.string(), 0, "cannot initialise zlib");
+    stream.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(compressed.data()));
+    stream.avail_in = static_cast<uInt>(compressed.size());
+
+    std::string out;
+    out.resize(std::max<std::size_t>(compressed.size() * 4, 1 << 16));
+    int status = Z_OK;
+    while (status != Z_STREAM_END) {
+        if (stream.total_out >= out.size()) out.resize(out.size() * 2);
+        stream.next_out = reinterpret_cast<Bytef*>(out.data() + stream.total_out);
+        stream.avail_out = static_cast<uInt>(out.size() - stream.total_out);
+        status = inflate(&stream, Z_NO_FLUSH);
+        if (status == Z_STREAM_END) break;
+        if (status != Z_OK && !(status == Z_BUF_ERROR && stream.avail_out == 0)) {
+            std::string reason = stream.msg ? stream.msg : "unexpected end of data";
+            inflateEnd(&stream);
+            throw InputError(path.string(), 0, "corrupt gzip stream (" + reason + ")");
+        }
+        if (status == Z_OK && stream.avail_in == 0 && stream.avail_out != 0) {
+            inflateEnd(&stream);
+            throw InputError(path.string(), 0, "corrupt gzip stream (truncated)");
+        }
+    }
+    out.resize(stream.total_out);
+    inflateEnd(&stream);
+    return out;
+}
+
+} // namespace
+
+fs::path resolveMaybeCompressed(const fs::path& path)
+{
+    if (fs::exists(path)) return path;
+    if (fs::exists(withGzSuffix(path))) return withGzSuffix(path);
+    throw InputError(path.string(), 0, "file not found (looked for " + path.string() + " and " + withGzSuffix(path).string() + ")");
+}
+
+bool existsMaybeCompressed(const fs::path& path)
+{
+    return fs::exists(path) || fs::exists(withGzSuffix(path));
+}
+
+std::string readFileContents(const fs::path& path)
+{
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(path.string(), 0, "cannot open file for reading");
+    std::ostringstream buffer;
+    buffer << in.rdbuf();
+    std::string bytes = std::move(buffer).str();
+    if (looksGzipped(bytes)) return gunzip(bytes, path);
+    if (path.extension() == ".gz") throw InputError(path.string(), 0, "file name ends in .gz but the content is not a gzip stream");
+    return bytes;
+}
+
+fs::path writeFileContents(const fs::path& path, std::string_view contents, bool compress)
+{
+    if (!compress) {
+        std::ofstream out(path, std::ios::binary | std::ios::trunc);
+        out.write(contents.data(), static_cast<std::streamsize>(contents.size()));
+        out.close();
+        if (!out) throw std::runtime_error("cannot write file " + path.string());
+        return path;
+    }
+    const fs::path target = withGzSuffix(path);
+    gzFile file = gzopen(target.c_str(), "wb6");
+    if (!file) throw std::runtime_error("cannot open file for writing " + target.string());
+    std::size_t written = 0;
+    while (written < contents.size()) {
+        const unsigned chunk = static_cast<unsigned>(std::min<std::size_t>(contents.size() - written, 1u << 30));
+        if (gzwrite(file, contents.data() + written, chunk) != static_cast<int>(chunk)) {
+            gzclose(file);
+            throw std::runtime_error("cannot write gzip file " + target.string());
+        }
+        written += chunk;
+    }
+    if (gzclose(file) != Z_OK) throw std::runtime_error("cannot close gzip file " + target.string());
+    return target;
+}
+
+} // namespace rbm::io

@@ -1,0 +1,27 @@
+#pragma once
+// Whole-file reading and writing with transparent gzip, as OpenFOAM does:
+// a file "points" may be stored as "points.gz".
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+namespace rbm::io {
+
+// The file to read for `path`: `path` itself if it exists, else `path.gz` if that exists.
+// Throws rbm::InputError naming both when neither exists.
+std::filesystem::path resolveMaybeCompressed(const std::filesystem::path& path);
+
+// True when a file of that name exists, plain or as .gz.
+bool existsMaybeCompressed(const std::filesystem::path& path);
+
+// Reads the whole file (decompressing when its name ends in .gz or its content starts with
+// the gzip magic bytes). Throws rbm::InputError naming the file for a missing file or a
+// corrupt gzip stream.
+std::string readFileContents(const std::filesystem::path& path);
+
+// Writes `contents` to `path`, gzip-compressed when `compress` is true (then ".gz" is
+// appended to the name). Returns the path written. Throws std::runtime_error on failure.
+std::filesystem::path writeFileContents(const std::filesystem::path& path, std::string_view contents, bool compress);
+
+} // namespace rbm::io
