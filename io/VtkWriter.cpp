@@ -1,0 +1,138 @@
+#include "VtkWriter.hpp"
+
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkDoubleArray.h>
+#include <vtkIdTypeArray.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkUnsignedCharArray.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLUnstructuredGridWriter.h>
+
+#include <algorithm>
+#include <fstream>
+#include <iomanip>
+#include <regex>
+#include <sstream>
+#include <stdexcept>
+
+namespace rbm::io {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+vtkNew<vtkDoubleArray> makeArray(const VtkField& field, std::size_t expectedTuples, const char* where)
+{
+    if (field.components < 1 || field.values.size() != expectedTuples * static_cast<std::size_t>(field.components)) {
+        throw std::runtime_error("VTK " + std::string(where) + " field '" + field.name + "' has " +
+                                 std::to_string(field.values.size()) + " values; expected " +
+                                 std::to_string(expectedTuples) + " x " + std::to_string(field.components));
+    }
+    vtkNew<vtkDoubleArray> array;
+    array->SetName(field.name.c_str());
+    array->SetNumberOfComponents(field.components);
+    array->SetNumberOfTuples(static_cast<vtkIdType>(expectedTuples));
+    std::copy(field.values.begin(), field.values.end(), array->GetPointer(0));
+    return array;
+}
+
+} // namespace
+
+void writeVtu(const fs::path& file, const std::vector<Vector3>& points, const VtkCells& cells,
+              const std::vector<VtkField>& pointFields, const std::vector<VtkField>& cellFields)
+{
+    vtkNew<vtkPoints> vtkPointSet;
+    vtkPointSet->SetDataTypeToDouble();
+    vtkPointSet->SetNumberOfPoints(static_cast<vtkIdType>(points.size()));
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        vtkPointSet->SetPoint(static_cast<vtkIdType>(i), points[i].x, points[i].y, points[i].z);
+    }
+
+    vtkNew<vtkUnstructuredGrid> grid;
+    grid->SetPoints(vtkPointSet);
+    grid->Allocate(cells.cellCount());
+    std::vector<vtkIdType> ids;
+    std::vector<vtkIdType> faceIds;
+    for (Label c = 0; c < cells.cellCount(); ++c) {
+        ids.assign(cells.connectivity.begin() + cells.offsets[c], cells.connectivity.begin() + cells.offsets[c + 1]);
+        const Label faceBegin = cells.faceStreamOffsets.size() > static_cast<std::size_t>(c + 1) ? cells.faceStreamOffsets[c] : 0;
+        const Label faceEnd = cells.faceStreamOffsets.size() > static_cast<std::size_t>(c + 1) ? cells.faceStreamOffsets[c + 1] : 0;
+        if (faceEnd > faceBegin) {
+            faceIds.assign(cells.faceStream.begin() + faceBegin + 1, cells.faceStream.begin() + faceEnd);
+            grid->InsertNextCell(cells.types[c], static_cast<vtkIdType>(ids.size()), ids.data(),
+                                 static_cast<vtkIdType>(cells.faceStream[faceBegin]), faceIds.data());
+        } else {
+            grid->InsertNextCell(cells.types[c], static_cast<vtkIdType>(ids.size()), ids.data());
+        }
+    }
+    for (const VtkField& field : pointFields) grid->GetPointData()->AddArray(makeArray(field, points.size(), "point"));
+    for (const VtkField& field : cellFields) {
+        grid->GetCellData()->AddArray(makeArray(field, static_cast<std::size_t>(cells.cellCount()), "cell"));
+    }
+
+    // Written under a temporary name and renamed, so a reader never sees half a file.
+    const fs::path temporary = fs::path(file.string() + ".tmp");
+    vtkNew<vtkXMLUnstructuredGridWriter> writer;
+    writer->SetFileName(temporary.c_str());
+    writer->SetInputData(grid);
+    writer->SetDataModeToAppended();
+    writer->SetCompressorTypeToZLib();
+    if (writer->Write() != 1) {
+        fs::remove(temporary);
+        throw std::runtime_error("VTK could not write " + file.string());
+    }
+    fs::rename(temporary, file);
+}
+
+PvdCollection::PvdCollection(fs::path file) : file_(std::move(file)) {}
+
+void PvdCollection::load()
+{
+    entries_.clear();
+    std::ifstream in(file_);
+    if (!in) return;
+    std::stringstream buffer;
+    buffer << in.rdbuf();
+    const std::string text = buffer.str();
+    const std::regex dataSet(R"re(<DataSet[^>]*timestep="([^"]*)"[^>]*file="([^"]*)")re");
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), dataSet); it != std::sregex_iterator(); ++it) {
+        add(std::stod((*it)[1].str()), (*it)[2].str());
+    }
+}
+
+void PvdCollection::add(double time, const std::string& dataset)
+{
+    auto sameTime = std::find_if(entries_.begin(), entries_.end(), [&](const Entry& e) { return e.time == time; });
+    if (sameTime != entries_.end()) {
+        sameTime->dataset = dataset;
+        return;
+    }
+    entries_.push_back({time, dataset});
+    std::stable_sort(entries_.begin(), entries_.end(), [](const Entry& a, const Entry& b) { return a.time < b.time; });
+}
+
+void PvdCollection::write() const
+{
+    std::ostringstream xml;
+    xml << "<?xml version=\"1.0\"?>\n"
+        << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+        << "  <Collection>\n";
+    xml << std::setprecision(17);
+    for (const Entry& e : entries_) {
+        xml << "    <DataSet timestep=\"" << e.time << "\" group=\"\" part=\"0\" file=\"" << e.dataset << "\"/>\n";
+    }
+    xml << "  </Collection>\n</VTKFile>\n";
+
+    const fs::path temporary = fs::path(file_.string() + ".tmp");
+    {
+        std::ofstream out(temporary, std::ios::trunc);
+        out << xml.str();
+        if (!out) throw std::runtime_error("cannot write " + temporary.string());
+    }
+    fs::rename(temporary, file_);
+}
+
+} // namespace rbm::io
