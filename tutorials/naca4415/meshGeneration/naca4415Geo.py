@@ -3,14 +3,18 @@
 NACA4415 airfoil (chord 1, closed trailing edge at (1, 0)) in a circular far field of
 radius 20 chords, extruded by one layer of prisms in z (OpenFOAM's pseudo-3D form).
 
-Usage: naca4415Geo.py [surfaceSize] [farfieldSize] > naca4415.geo
+Usage: naca4415Geo.py [surfaceSize] [farfieldSize] [firstLayerHeight] > naca4415.geo
 The defaults give about 13 000 nodes per plane, the size of the thesis' §3.2.1 grid.
+With firstLayerHeight > 0, a structured boundary layer of quadrilaterals (hexahedra after
+extrusion) wraps the airfoil, its first cell that thin: surfaceSize / firstLayerHeight is
+the aspect ratio of the wall cells (a CFD mesh for wall-resolved flow has several hundred).
 """
 import math
 import sys
 
 surface_size = float(sys.argv[1]) if len(sys.argv) > 1 else 0.0045
 farfield_size = float(sys.argv[2]) if len(sys.argv) > 2 else 1.6
+first_layer_height = float(sys.argv[3]) if len(sys.argv) > 3 else 0.0
 points_per_side = 160
 m, p, t = 0.04, 0.4, 0.15          # NACA 4-4-15: camber 4 %, at 40 %, thickness 15 %
 
@@ -63,6 +67,11 @@ out.append("Field[1] = Distance; Field[1].CurvesList = {1, 2}; Field[1].NumPoint
 out.append("Field[2] = MathEval; Field[2].F = Sprintf(\"%g + 0.08*F1^1.15\", hs);")
 out.append("Field[3] = Min; Field[3].FieldsList = {2};")
 out.append("Background Field = 3;")
+if first_layer_height > 0:
+    out.append("Field[10] = BoundaryLayer; Field[10].CurvesList = {1, 2};")
+    out.append(f"Field[10].Size = {first_layer_height}; Field[10].Ratio = 1.25; Field[10].Thickness = 0.04;")
+    out.append(f"Field[10].SizeFar = {surface_size}; Field[10].Quads = 1; Field[10].FanPointsList = {{{te}}};")
+    out.append("BoundaryLayer Field = 10;")
 out.append("Mesh.MeshSizeExtendFromBoundary = 0; Mesh.MeshSizeFromPoints = 1; Mesh.MeshSizeFromCurvature = 0;")
 out.append("Mesh.Algorithm = 6;")
 out.append("extruded[] = Extrude {0, 0, 0.1} { Surface{1}; Layers{1}; Recombine; };")
