@@ -11,6 +11,9 @@
 
 namespace rbm {
 
+struct MeshTopology;
+struct PlanarMesh;
+
 struct CellNeighbourGraph {
     std::vector<Label> offsets{0};
     std::vector<Label> neighbours;
@@ -27,5 +30,11 @@ struct CellNeighbourGraph {
 // cellPoints[cellOffsets[c] .. cellOffsets[c+1])), over nodes 0 .. nodeCount-1.
 CellNeighbourGraph buildCellNeighbourGraph(Label nodeCount, std::span<const Label> cellOffsets,
                                            std::span<const Label> cellPoints);
+
+// The same graph over the points of a 3D mesh (cells from MeshTopology's cell → points lists).
+CellNeighbourGraph buildCellNeighbourGraph(const MeshTopology& topology);
+CellNeighbourGraph buildCellNeighbourGraph(const PolyMesh& mesh);
+// Over the nodes of a 2D mesh (cells are its polygons).
+CellNeighbourGraph buildCellNeighbourGraph(const PlanarMesh& mesh);
 
 } // namespace rbm
