@@ -1,5 +1,7 @@
 #include "VtkWriter.hpp"
 
+#include "CellShape.hpp"
+
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkDoubleArray.h>
@@ -40,6 +42,22 @@ vtkNew<vtkDoubleArray> makeArray(const VtkField& field, std::size_t expectedTupl
 }
 
 } // namespace
+
+VtkCells vtkCellsOf(const PolyMesh& mesh, const MeshTopology& topology)
+{
+    VtkCells cells;
+    const Label cellCount = topology.cellCount;
+    cells.types.reserve(static_cast<std::size_t>(cellCount));
+    cells.offsets.reserve(static_cast<std::size_t>(cellCount) + 1);
+    cells.faceStreamOffsets.reserve(static_cast<std::size_t>(cellCount) + 1);
+    cells.connectivity.reserve(topology.cellPoints.size());
+    for (Label c = 0; c < cellCount; ++c) {
+        cells.types.push_back(static_cast<std::uint8_t>(appendVtkCell(mesh, topology, c, cells.connectivity, cells.faceStream)));
+        cells.offsets.push_back(static_cast<Label>(cells.connectivity.size()));
+        cells.faceStreamOffsets.push_back(static_cast<Label>(cells.faceStream.size()));
+    }
+    return cells;
+}
 
 void writeVtu(const fs::path& file, const std::vector<Vector3>& points, const VtkCells& cells,
               const std::vector<VtkField>& pointFields, const std::vector<VtkField>& cellFields)

@@ -3,6 +3,7 @@
 // time, and a .pvd collection that lists them with their times so ParaView plays the series.
 // VTK 9.1 has no .pvd writer; that small XML file is written here.
 
+#include "MeshTopology.hpp"
 #include "PolyMesh.hpp"
 #include "Vector3.hpp"
 
@@ -27,6 +28,10 @@ struct VtkCells {
 
     Label cellCount() const { return static_cast<Label>(types.size()); }
 };
+
+// The cells of a polyhedral mesh in VTK's terms: tetrahedra, pyramids, prisms and hexahedra
+// as VTK's standard cells, everything else as VTK_POLYHEDRON with its outward faces.
+VtkCells vtkCellsOf(const PolyMesh& mesh, const MeshTopology& topology);
 
 // A named field with `components` values per point or per cell (1 = scalar, 3 = vector).
 struct VtkField {

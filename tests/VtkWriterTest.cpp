@@ -1,5 +1,8 @@
 #include "VtkWriter.hpp"
 
+#include "MeshGenerators.hpp"
+#include "MeshTopology.hpp"
+
 #include <gtest/gtest.h>
 
 #include <vtkCellData.h>
@@ -114,5 +117,31 @@ TEST(PvdCollection, EntriesAreSortedReplacedAndReloaded)
     EXPECT_EQ(reloaded.size(), 2u);
     reloaded.add(1.0, "VTK/case_1.vtu");
     EXPECT_EQ(reloaded.size(), 3u);
+    fs::remove_all(dir);
+}
+
+TEST(VtkWriter, HexBoxCellsAreWrittenAsHexahedraWithPositiveVolume)
+{
+    const rbm::PolyMesh mesh = rbm::makeHexBox(3, 2, 2, {0, 0, 0}, {3, 2, 2});
+    const rbm::MeshTopology topology = rbm::buildMeshTopology(mesh);
+    const VtkCells cells = rbm::io::vtkCellsOf(mesh, topology);
+    ASSERT_EQ(cells.cellCount(), 12);
+    for (rbm::Label c = 0; c < cells.cellCount(); ++c) {
+        EXPECT_EQ(cells.types[c], VTK_HEXAHEDRON);
+        EXPECT_EQ(cells.offsets[c + 1] - cells.offsets[c], 8);
+    }
+    const fs::path dir = freshDirectory("rbmVtkWriterHexBox");
+    rbm::io::writeVtu(dir / "box.vtu", mesh.points, cells, {}, {});
+    vtkNew<vtkXMLUnstructuredGridReader> reader;
+    reader->SetFileName((dir / "box.vtu").c_str());
+    reader->Update();
+    vtkUnstructuredGrid* grid = reader->GetOutput();
+    ASSERT_EQ(grid->GetNumberOfCells(), 12);
+    // Cell 5 is a unit cube of the 3 x 2 x 2 box.
+    double bounds[6];
+    grid->GetCell(5)->GetBounds(bounds);
+    EXPECT_DOUBLE_EQ(bounds[1] - bounds[0], 1.0);
+    EXPECT_DOUBLE_EQ(bounds[3] - bounds[2], 1.0);
+    EXPECT_DOUBLE_EQ(bounds[5] - bounds[4], 1.0);
     fs::remove_all(dir);
 }
