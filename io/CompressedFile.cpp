@@ -72,11 +72,13 @@ bool existsMaybeCompressed(const fs::path& path)
 
 std::string readFileContents(const fs::path& path)
 {
-    std::ifstream in(path, std::ios::binary);
+    std::ifstream in(path, std::ios::binary | std::ios::ate);
     if (!in) throw InputError(path.string(), 0, "cannot open file for reading");
-    std::ostringstream buffer;
-    buffer << in.rdbuf();
-    std::string bytes = std::move(buffer).str();
+    // One read into a buffer of the file's size: no stream-buffer copy of large meshes.
+    std::string bytes(static_cast<std::size_t>(in.tellg()), '\0');
+    in.seekg(0);
+    in.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    if (!in) throw InputError(path.string(), 0, "cannot read file");
     if (looksGzipped(bytes)) return gunzip(bytes, path);
     if (path.extension() == ".gz") throw InputError(path.string(), 0, "file name ends in .gz but the content is not a gzip stream");
     return bytes;

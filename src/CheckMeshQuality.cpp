@@ -1,0 +1,348 @@
+#include "CheckMeshQuality.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+namespace rbm {
+
+namespace {
+
+// OpenFOAM's double-precision constants (primitives/Scalar/doubleScalar/doubleScalar.H).
+constexpr double small = 1.0e-15;           // SMALL
+constexpr double verySmall = 1.0e-300;      // VSMALL
+constexpr double rootVerySmall = 1.0e-150;  // ROOTVSMALL
+constexpr double veryGreat = 1.0e+300;      // VGREAT
+
+// unitConversion.H: radToDeg(rad) = rad*180/pi, degToRad(deg) = deg*pi/180.
+double radiansToDegrees(double radians) { return radians * 180.0 / std::numbers::pi; }
+double degreesToRadians(double degrees) { return degrees * std::numbers::pi / 180.0; }
+
+Vector3 componentMagnitudes(const Vector3& v) { return {std::abs(v.x), std::abs(v.y), std::abs(v.z)}; }
+
+// VectorI.H normalised(): zero for a vector shorter than ROOTVSMALL.
+Vector3 normalised(const Vector3& v)
+{
+    const double length = norm(v);
+    return length < rootVerySmall ? Vector3{} : v / length;
+}
+
+// The normalisation distance shared by faceSkewness and boundaryFaceSkewness: "the
+// approximate distance from the face centre to the edge of the face in the direction of
+// the skewness", at least `floor`.
+double skewnessNormalisation(std::span<const Label> facePoints, std::span<const Vector3> points,
+                             const Vector3& faceCentre, const Vector3& skewDirection, double floor)
+{
+    double distance = floor;
+    for (Label p : facePoints) distance = std::max(distance, std::abs(dot(skewDirection, points[p] - faceCentre)));
+    return distance;
+}
+
+bool isType(const Patch& patch, const char* type) { return patch.type == type; }
+
+} // namespace
+
+int CheckMeshQuality::failedCheckCount() const
+{
+    int failed = 0;
+    double largestOpenness = 0.0;
+    for (int i = 0; i < 3; ++i) largestOpenness = std::max(largestOpenness, std::abs(boundaryOpenness[i]));
+    if (largestOpenness > closedThreshold) ++failed;                                 // checkClosedBoundary
+    if (openCellCount > 0 || highAspectRatioCellCount > 0) ++failed;                 // checkClosedCells
+    if (faceCount > 0 && minFaceArea < verySmall) ++failed;                          // checkFaceAreas
+    if (cellCount > 0 && minCellVolume < verySmall) ++failed;                        // checkCellVolumes
+    if (nonOrthogonalityErrorCount > 0) ++failed;                                    // checkFaceOrthogonality
+    if (incorrectlyOrientedPyramidCount > 0) ++failed;                               // checkFacePyramids
+    if (severelySkewFaceCount > 0) ++failed;                                         // checkFaceSkewness
+    return failed;
+}
+
+bool CheckMeshQuality::hasInvalidCells() const
+{
+    return openCellCount > 0 || zeroAreaFaceCount > 0 || nonPositiveVolumeCellCount > 0 ||
+           nonOrthogonalityErrorCount > 0 || incorrectlyOrientedPyramidCount > 0;
+}
+
+double faceNonOrthogonalityCosine(const Vector3& ownerCentre, const Vector3& neighbourCentre, const Vector3& faceArea)
+{
+    // primitiveMeshTools::faceOrthogonality
+    const Vector3 d = neighbourCentre - ownerCentre;
+    return dot(d, faceArea) / (norm(d) * norm(faceArea) + rootVerySmall);
+}
+
+double faceSkewness(std::span<const Label> facePoints, std::span<const Vector3> points, const Vector3& faceCentre,
+                    const Vector3& faceArea, const Vector3& ownerCentre, const Vector3& neighbourCentre)
+{
+    // primitiveMeshTools::faceSkewness
+    const Vector3 ownerToFace = faceCentre - ownerCentre;
+    const Vector3 d = neighbourCentre - ownerCentre;
+    const Vector3 skew = ownerToFace - (dot(faceArea, ownerToFace) / (dot(faceArea, d) + rootVerySmall)) * d;
+    const Vector3 skewDirection = skew / (norm(skew) + rootVerySmall);
+    const double distance =
+        skewnessNormalisation(facePoints, points, faceCentre, skewDirection, 0.2 * norm(d) + rootVerySmall);
+    return norm(skew) / distance;
+}
+
+double boundaryFaceSkewness(std::span<const Label> facePoints, std::span<const Vector3> points, const Vector3& faceCentre,
+                            const Vector3& faceArea, const Vector3& ownerCentre)
+{
+    // primitiveMeshTools::boundaryFaceSkewness: the neighbour is the owner mirrored in the face.
+    const Vector3 ownerToFace = faceCentre - ownerCentre;
+    const Vector3 normal = normalised(faceArea);
+    const Vector3 d = normal * dot(normal, ownerToFace);
+    const Vector3 skew = ownerToFace - (dot(faceArea, ownerToFace) / (dot(faceArea, d) + rootVerySmall)) * d;
+    const Vector3 skewDirection = skew / (norm(skew) + rootVerySmall);
+    const double distance =
+        skewnessNormalisation(facePoints, points, faceCentre, skewDirection, 0.4 * norm(d) + rootVerySmall);
+    return norm(skew) / distance;
+}
+
+void computeMeshDirections(const PolyMesh& mesh, std::span<const Vector3> faceAreas,
+                           std::array<int, 3>& solutionDirections, std::array<int, 3>& geometricDirections)
+{
+    // polyMesh::calcDirections
+    int emptyPatchCount = 0;
+    int wedgePatchCount = 0;
+    Vector3 emptyDirections;
+    Vector3 wedgeDirections;
+    for (const Patch& patch : mesh.patches) {
+        if (patch.faceCount == 0) continue;
+        if (isType(patch, "empty")) {
+            ++emptyPatchCount;
+            for (Label f = patch.startFace; f < patch.startFace + patch.faceCount; ++f) {
+                emptyDirections += componentMagnitudes(faceAreas[f]);
+            }
+        } else if (isType(patch, "wedge")) {
+            // wedgePolyPatch::calcGeometry: n = average unit face normal; the centre normal
+            // keeps the components beyond 0.5 in magnitude (shifted by 0.5), normalised.
+            ++wedgePatchCount;
+            Vector3 averageNormal;
+            for (Label f = patch.startFace; f < patch.startFace + patch.faceCount; ++f) {
+                averageNormal += faceAreas[f] / (norm(faceAreas[f]) + verySmall);
+            }
+            averageNormal /= static_cast<double>(patch.faceCount);
+            Vector3 centreNormal;
+            for (int i = 0; i < 3; ++i) {
+                const double sign = averageNormal[i] >= 0.0 ? 1.0 : -1.0;
+                centreNormal[i] = sign * (std::max(std::abs(averageNormal[i]), 0.5) - 0.5);
+            }
+            centreNormal /= norm(centreNormal);
+            wedgeDirections += componentMagnitudes(centreNormal);
+        }
+    }
+
+    solutionDirections = {1, 1, 1};
+    if (emptyPatchCount > 0) {
+        emptyDirections /= norm(emptyDirections);
+        for (int i = 0; i < 3; ++i) solutionDirections[i] = emptyDirections[i] > 1e-6 ? 0 : 1;
+    }
+    // "Knock out wedge directions": with wedges, geometricD is set from the wedges alone.
+    geometricDirections = solutionDirections;
+    if (wedgePatchCount > 0) {
+        wedgeDirections /= norm(wedgeDirections);
+        for (int i = 0; i < 3; ++i) geometricDirections[i] = wedgeDirections[i] > 1e-6 ? 0 : 1;
+    }
+}
+
+CheckMeshQuality computeCheckMeshQuality(const PolyMesh& mesh, std::span<const Vector3> points,
+                                         const MeshGeometry& geometry, CheckMeshWorkspace& workspace)
+{
+    CheckMeshQuality q;
+    q.pointCount = mesh.pointCount();
+    q.faceCount = mesh.faceCount();
+    q.internalFaceCount = mesh.internalFaceCount();
+    q.cellCount = static_cast<Label>(geometry.cellVolumes.size());
+    if (geometry.faceAreas.size() != static_cast<std::size_t>(q.faceCount) ||
+        points.size() != mesh.points.size()) {
+        throw std::invalid_argument("computeCheckMeshQuality: the geometry (" + std::to_string(geometry.faceAreas.size()) +
+                                    " faces) or points (" + std::to_string(points.size()) +
+                                    ") do not belong to this mesh");
+    }
+
+    const std::span<const Vector3> faceCentres = geometry.faceCentres;
+    const std::span<const Vector3> faceAreas = geometry.faceAreas;
+    const std::span<const Vector3> cellCentres = geometry.cellCentres;
+    const std::span<const double> cellVolumes = geometry.cellVolumes;
+    const Label* owner = mesh.owner.data();
+    const Label* neighbour = mesh.neighbour.data();
+
+    // Overall domain bounding box (boundBox of all points).
+    if (!points.empty()) {
+        q.boundingBoxMin = q.boundingBoxMax = points[0];
+        for (const Vector3& p : points) {
+            for (int i = 0; i < 3; ++i) {
+                q.boundingBoxMin[i] = std::min(q.boundingBoxMin[i], p[i]);
+                q.boundingBoxMax[i] = std::max(q.boundingBoxMax[i], p[i]);
+            }
+        }
+    }
+    computeMeshDirections(mesh, faceAreas, q.solutionDirections, q.geometricDirections);
+
+    auto& sumClosed = workspace.sumClosed;
+    auto& sumMagClosed = workspace.sumMagClosed;
+    sumClosed.assign(static_cast<std::size_t>(q.cellCount), Vector3{});
+    sumMagClosed.assign(static_cast<std::size_t>(q.cellCount), Vector3{});
+
+    const double severeCosine = std::cos(degreesToRadians(CheckMeshQuality::nonOrthogonalityThreshold));
+    const double minPyramidVolume = -small;   // checkGeometry.C: checkFacePyramids(true, -SMALL, ...)
+
+    double minArea = std::numeric_limits<double>::max();
+    double maxArea = -std::numeric_limits<double>::max();
+    double minCosine = veryGreat;
+    double sumCosine = 0.0;
+    double maxSkew = 0.0;
+    double minWeight = veryGreat;
+    double sumWeight = 0.0;
+    double minRatio = veryGreat;
+    double sumRatio = 0.0;
+    Vector3 boundarySum;
+    double boundaryMagnitudeSum = 0.0;
+
+    for (Label f = 0; f < q.faceCount; ++f) {
+        const Vector3& S = faceAreas[f];
+        const Vector3& fc = faceCentres[f];
+        const Label own = owner[f];
+        const Vector3 magS = componentMagnitudes(S);
+        const double area = norm(S);
+
+        // checkFaceAreas
+        if (area < verySmall) ++q.zeroAreaFaceCount;
+        minArea = std::min(minArea, area);
+        maxArea = std::max(maxArea, area);
+
+        // cellClosedness: sum of S (owner +, neighbour - below) and of component-wise |S|.
+        sumClosed[own] += S;
+        sumMagClosed[own] += magS;
+
+        // checkFacePyramids, owner side: -pyramid(face, C_o).mag() = S.(C_f - C_o)/3.
+        if ((1.0 / 3.0) * dot(S, fc - cellCentres[own]) < minPyramidVolume) ++q.incorrectlyOrientedPyramidCount;
+
+        if (f < q.internalFaceCount) {
+            const Label nei = neighbour[f];
+            if ((1.0 / 3.0) * dot(S, cellCentres[nei] - fc) < minPyramidVolume) ++q.incorrectlyOrientedPyramidCount;
+
+            // polyMesh::checkFaceOrthogonality
+            const double cosine = faceNonOrthogonalityCosine(cellCentres[own], cellCentres[nei], S);
+            if (cosine < severeCosine) {
+                if (cosine > small) {
+                    ++q.severelyNonOrthogonalFaceCount;
+                } else {
+                    ++q.nonOrthogonalityErrorCount;
+                }
+            }
+            minCosine = std::min(minCosine, cosine);
+            sumCosine += cosine;
+
+            // polyMesh::checkFaceSkewness
+            const double skew = faceSkewness(mesh.face(f), points, fc, S, cellCentres[own], cellCentres[nei]);
+            maxSkew = std::max(maxSkew, skew);
+            if (skew > CheckMeshQuality::skewnessThreshold) ++q.severelySkewFaceCount;
+
+            // polyMeshTools::faceWeights and volRatio
+            const double ownerDistance = std::abs(dot(S, fc - cellCentres[own]));
+            const double neighbourDistance = std::abs(dot(S, cellCentres[nei] - fc));
+            const double weight =
+                std::min(neighbourDistance, ownerDistance) / (neighbourDistance + ownerDistance + verySmall);
+            minWeight = std::min(minWeight, weight);
+            sumWeight += weight;
+            if (weight < CheckMeshQuality::faceWeightThreshold) ++q.lowWeightFaceCount;
+
+            const double ownerVolume = cellVolumes[own];
+            const double neighbourVolume = cellVolumes[nei];
+            const double ratio =
+                std::min(ownerVolume, neighbourVolume) / (std::max(ownerVolume, neighbourVolume) + verySmall);
+            minRatio = std::min(minRatio, ratio);
+            sumRatio += ratio;
+            if (ratio < CheckMeshQuality::volumeRatioThreshold) ++q.lowVolumeRatioFaceCount;
+        } else {
+            // checkClosedBoundary
+            boundarySum += S;
+            boundaryMagnitudeSum += area;
+
+            const double skew = boundaryFaceSkewness(mesh.face(f), points, fc, S, cellCentres[own]);
+            maxSkew = std::max(maxSkew, skew);
+            if (skew > CheckMeshQuality::skewnessThreshold) ++q.severelySkewFaceCount;
+        }
+    }
+
+    // Neighbour contributions in a second loop, as cellClosedness adds them: the same
+    // summation order gives bit-identical aspect ratios.
+    for (Label f = 0; f < q.internalFaceCount; ++f) {
+        sumClosed[neighbour[f]] -= faceAreas[f];
+        sumMagClosed[neighbour[f]] += componentMagnitudes(faceAreas[f]);
+    }
+
+    if (q.faceCount > 0) {
+        q.minFaceArea = minArea;
+        q.maxFaceArea = maxArea;
+    }
+    q.boundaryOpenness = boundarySum / (boundaryMagnitudeSum + verySmall);
+    q.maxSkewness = maxSkew;
+    if (q.internalFaceCount > 0) {
+        const double n = static_cast<double>(q.internalFaceCount);
+        q.maxNonOrthogonality = radiansToDegrees(std::acos(std::clamp(minCosine, -1.0, 1.0)));
+        q.averageNonOrthogonality = radiansToDegrees(std::acos(std::clamp(sumCosine / n, -1.0, 1.0)));
+        q.minFaceWeight = minWeight;
+        q.averageFaceWeight = sumWeight / n;
+        q.minVolumeRatio = minRatio;
+        q.averageVolumeRatio = sumRatio / n;
+    }
+
+    // Per cell: openness, aspect ratio (cellClosedness with meshD = geometricD), volumes.
+    const int dimensions = q.geometricDimensionCount();
+    double minVolume = std::numeric_limits<double>::max();
+    double maxVolume = -std::numeric_limits<double>::max();
+    double totalVolume = 0.0;
+    double maxOpenness = 0.0;
+    double maxAspect = -std::numeric_limits<double>::max();
+    for (Label c = 0; c < q.cellCount; ++c) {
+        const Vector3& closed = sumClosed[c];
+        const Vector3& magClosed = sumMagClosed[c];
+        double openness = 0.0;
+        for (int i = 0; i < 3; ++i) openness = std::max(openness, std::abs(closed[i]) / (magClosed[i] + rootVerySmall));
+        if (openness > CheckMeshQuality::closedThreshold) ++q.openCellCount;
+        maxOpenness = std::max(maxOpenness, openness);
+
+        double minComponent = veryGreat;
+        double maxComponent = -veryGreat;
+        for (int i = 0; i < 3; ++i) {
+            if (q.geometricDirections[i] == 1) {
+                minComponent = std::min(minComponent, magClosed[i]);
+                maxComponent = std::max(maxComponent, magClosed[i]);
+            }
+        }
+        double aspectRatio = maxComponent / (minComponent + rootVerySmall);
+        if (dimensions == 3) {
+            const double v = std::max(rootVerySmall, cellVolumes[c]);
+            aspectRatio = std::max(aspectRatio,
+                                   1.0 / 6.0 * (magClosed.x + magClosed.y + magClosed.z) / std::pow(v, 2.0 / 3.0));
+        }
+        if (aspectRatio > CheckMeshQuality::aspectThreshold) ++q.highAspectRatioCellCount;
+        maxAspect = std::max(maxAspect, aspectRatio);
+
+        const double volume = cellVolumes[c];
+        if (volume < verySmall) ++q.nonPositiveVolumeCellCount;
+        minVolume = std::min(minVolume, volume);
+        maxVolume = std::max(maxVolume, volume);
+        totalVolume += volume;
+    }
+    if (q.cellCount > 0) {
+        q.maxCellOpenness = maxOpenness;
+        q.maxAspectRatio = maxAspect;
+        q.minCellVolume = minVolume;
+        q.maxCellVolume = maxVolume;
+    }
+    q.totalVolume = totalVolume;
+    return q;
+}
+
+CheckMeshQuality computeCheckMeshQuality(const PolyMesh& mesh, const MeshGeometry& geometry)
+{
+    CheckMeshWorkspace workspace;
+    return computeCheckMeshQuality(mesh, mesh.points, geometry, workspace);
+}
+
+} // namespace rbm

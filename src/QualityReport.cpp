@@ -1,0 +1,376 @@
+#include "QualityReport.hpp"
+
+#include "CellShape.hpp"
+#include "InputError.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+namespace rbm {
+
+QualityEvaluator::QualityEvaluator(const PolyMesh& mesh) : mesh_(mesh), topology_(buildMeshTopology(mesh))
+{
+    const auto counts = countCellShapes(mesh_, topology_);
+    for (std::size_t i = 0; i < cellShapeCounts_.size() && i < counts.size(); ++i) cellShapeCounts_[i] = counts[i];
+
+    pseudoTwoD_ = detectPseudoTwoD(mesh_);
+    if (pseudoTwoD_ != PseudoTwoDKind::None) {
+        try {
+            twoD_ = std::make_unique<PseudoTwoDMesh>(extractPseudoTwoD(mesh_, topology_));
+        } catch (const InputError& error) {
+            // Not a clean one-layer extrusion: the thesis metrics fall back to 3D, and the
+            // report says why.
+            twoDExtractionProblem_ = error.message();
+        }
+    }
+}
+
+QualityReport QualityEvaluator::evaluate(std::span<const Vector3> points)
+{
+    updateMeshGeometry(mesh_, points, geometry_);
+
+    QualityReport report;
+    report.pointCount = mesh_.pointCount();
+    report.faceCount = mesh_.faceCount();
+    report.internalFaceCount = mesh_.internalFaceCount();
+    report.cellCount = static_cast<Label>(geometry_.cellVolumes.size());
+    report.facesPerCell = report.cellCount > 0 ? (static_cast<double>(report.faceCount) + report.internalFaceCount) /
+                                                     static_cast<double>(report.cellCount)
+                                               : 0.0;
+    report.patchCount = static_cast<Label>(mesh_.patches.size());
+    report.pointZoneCount = static_cast<Label>(mesh_.pointZones.size());
+    report.faceZoneCount = static_cast<Label>(mesh_.faceZones.size());
+    report.cellZoneCount = static_cast<Label>(mesh_.cellZones.size());
+    report.cellShapeCounts = cellShapeCounts_;
+    report.pseudoTwoD = pseudoTwoD_;
+    report.twoDExtractionProblem = twoDExtractionProblem_;
+
+    report.checkMesh = computeCheckMeshQuality(mesh_, points, geometry_, checkMeshWorkspace_);
+
+    if (twoD_) {
+        // 2D node positions: the front-plane points in the plane's frame.
+        const Label nodes = twoD_->nodeCount();
+        nodePositions_.resize(static_cast<std::size_t>(nodes));
+        for (Label n = 0; n < nodes; ++n) nodePositions_[n] = twoD_->frame.toLocal(points[twoD_->frontPointOfNode[n]]);
+        report.thesis = computeThesisQuality2D(twoD_->planar, nodePositions_, thesisWorkspace_);
+    } else {
+        report.thesis = computeThesisQuality3D(mesh_, geometry_, thesisWorkspace_);
+    }
+    return report;
+}
+
+QualityReport computeQualityReport(const PolyMesh& mesh)
+{
+    QualityEvaluator evaluator(mesh);
+    return evaluator.evaluate();
+}
+
+namespace {
+
+// OpenFOAM's default stream formatting: 6 significant digits, general notation.
+std::string number(double value)
+{
+    std::ostringstream os;
+    os.precision(6);
+    os << value;
+    return os.str();
+}
+
+std::string vector(const Vector3& v) { return "(" + number(v.x) + " " + number(v.y) + " " + number(v.z) + ")"; }
+
+std::string directions(const std::array<int, 3>& d)
+{
+    return "(" + std::to_string(d[0]) + " " + std::to_string(d[1]) + " " + std::to_string(d[2]) + ")";
+}
+
+const char* pseudoTwoDName(PseudoTwoDKind kind)
+{
+    switch (kind) {
+    case PseudoTwoDKind::Empty: return "empty";
+    case PseudoTwoDKind::Wedge: return "wedge";
+    default: return "none";
+    }
+}
+
+std::string padded(const std::string& text, std::size_t width)
+{
+    return text.size() >= width ? text : text + std::string(width - text.size(), ' ');
+}
+
+std::string rightAligned(const std::string& text, std::size_t width)
+{
+    return text.size() >= width ? text : std::string(width - text.size(), ' ') + text;
+}
+
+void appendStatisticsRow(std::ostringstream& os, const std::string& name, const QualityStatistics& s)
+{
+    os << "    " << padded(name, 28) << rightAligned(std::to_string(s.count), 9);
+    if (s.count == 0) {
+        os << rightAligned("-", 13) << rightAligned("-", 13) << rightAligned("-", 13) << rightAligned("-", 13) << '\n';
+        return;
+    }
+    os << rightAligned(number(s.mean), 13) << rightAligned(number(s.standardDeviation), 13)
+       << rightAligned(number(s.min), 13) << rightAligned(number(s.max), 13) << '\n';
+}
+
+} // namespace
+
+std::string formatQualityReport(const QualityReport& r)
+{
+    const CheckMeshQuality& q = r.checkMesh;
+    std::ostringstream os;
+    os << "Mesh stats\n"
+       << "    points:           " << r.pointCount << '\n'
+       << "    faces:            " << r.faceCount << '\n'
+       << "    internal faces:   " << r.internalFaceCount << '\n'
+       << "    cells:            " << r.cellCount << '\n'
+       << "    faces per cell:   " << number(r.facesPerCell) << '\n'
+       << "    boundary patches: " << r.patchCount << '\n'
+       << "    point zones:      " << r.pointZoneCount << '\n'
+       << "    face zones:       " << r.faceZoneCount << '\n'
+       << "    cell zones:       " << r.cellZoneCount << "\n\n";
+
+    os << "Overall number of cells of each type:\n"
+       << "    hexahedra:     " << r.cellShapeCounts[static_cast<int>(CellShape::Hexahedron)] << '\n'
+       << "    prisms:        " << r.cellShapeCounts[static_cast<int>(CellShape::Prism)] << '\n'
+       << "    pyramids:      " << r.cellShapeCounts[static_cast<int>(CellShape::Pyramid)] << '\n'
+       << "    tetrahedra:    " << r.cellShapeCounts[static_cast<int>(CellShape::Tetrahedron)] << '\n'
+       << "    polyhedra:     " << r.cellShapeCounts[static_cast<int>(CellShape::Polyhedron)] << "\n\n";
+
+    if (r.thesis.dimension == 2) {
+        os << "Mesh is 2D: one layer of cells between " << pseudoTwoDName(r.pseudoTwoD)
+           << " planes; thesis metrics on the 2D mesh.\n\n";
+    } else if (r.pseudoTwoD != PseudoTwoDKind::None) {
+        os << "Mesh has " << pseudoTwoDName(r.pseudoTwoD)
+           << " patches but is not a clean one-layer extrusion; thesis metrics in 3D.\n    "
+           << r.twoDExtractionProblem << "\n\n";
+    } else {
+        os << "Mesh is 3D.\n\n";
+    }
+
+    os << "Checking geometry (checkMesh's definitions)...\n"
+       << "    Overall domain bounding box " << vector(q.boundingBoxMin) << " " << vector(q.boundingBoxMax) << '\n'
+       << "    Mesh has " << q.geometricDimensionCount() << " geometric (non-empty/wedge) directions "
+       << directions(q.geometricDirections) << '\n'
+       << "    Mesh has " << q.solutionDimensionCount() << " solution (non-empty) directions "
+       << directions(q.solutionDirections) << '\n';
+
+    double largestOpenness = 0.0;
+    for (int i = 0; i < 3; ++i) largestOpenness = std::max(largestOpenness, std::abs(q.boundaryOpenness[i]));
+    if (largestOpenness > CheckMeshQuality::closedThreshold) {
+        os << " ***Boundary openness " << vector(q.boundaryOpenness) << " possible hole in boundary description.\n";
+    } else {
+        os << "    Boundary openness " << vector(q.boundaryOpenness) << " OK.\n";
+    }
+    if (q.openCellCount > 0) {
+        os << " ***Open cells found, max cell openness: " << number(q.maxCellOpenness) << ", number of open cells "
+           << q.openCellCount << '\n';
+    } else if (q.highAspectRatioCellCount > 0) {
+        os << " ***High aspect ratio cells found, Max aspect ratio: " << number(q.maxAspectRatio)
+           << ", number of cells " << q.highAspectRatioCellCount << '\n';
+    } else {
+        os << "    Max cell openness = " << number(q.maxCellOpenness) << " OK.\n"
+           << "    Max aspect ratio = " << number(q.maxAspectRatio) << " OK.\n";
+    }
+    if (q.zeroAreaFaceCount > 0) {
+        os << " ***Zero or negative face area detected.  Minimum area: " << number(q.minFaceArea) << '\n';
+    } else {
+        os << "    Minimum face area = " << number(q.minFaceArea) << ". Maximum face area = " << number(q.maxFaceArea)
+           << ".  Face area magnitudes OK.\n";
+    }
+    if (q.nonPositiveVolumeCellCount > 0) {
+        os << " ***Zero or negative cell volume detected.  Minimum negative volume: " << number(q.minCellVolume)
+           << ", Number of negative volume cells: " << q.nonPositiveVolumeCellCount << '\n';
+    } else {
+        os << "    Min volume = " << number(q.minCellVolume) << ". Max volume = " << number(q.maxCellVolume)
+           << ".  Total volume = " << number(q.totalVolume) << ".  Cell volumes OK.\n";
+    }
+    if (q.internalFaceCount > 0) {
+        os << "    Mesh non-orthogonality Max: " << number(q.maxNonOrthogonality)
+           << " average: " << number(q.averageNonOrthogonality) << '\n';
+    }
+    if (q.severelyNonOrthogonalFaceCount > 0) {
+        os << "   *Number of severely non-orthogonal (> " << number(CheckMeshQuality::nonOrthogonalityThreshold)
+           << " degrees) faces: " << q.severelyNonOrthogonalFaceCount << ".\n";
+    }
+    if (q.nonOrthogonalityErrorCount > 0) {
+        os << " ***Number of non-orthogonality errors: " << q.nonOrthogonalityErrorCount << ".\n";
+    } else {
+        os << "    Non-orthogonality check OK.\n";
+    }
+    if (q.incorrectlyOrientedPyramidCount > 0) {
+        os << " ***Error in face pyramids: " << q.incorrectlyOrientedPyramidCount << " faces are incorrectly oriented.\n";
+    } else {
+        os << "    Face pyramids OK.\n";
+    }
+    if (q.severelySkewFaceCount > 0) {
+        os << " ***Max skewness = " << number(q.maxSkewness) << ", " << q.severelySkewFaceCount
+           << " highly skew faces detected which may impair the quality of the results\n";
+    } else {
+        os << "    Max skewness = " << number(q.maxSkewness) << " OK.\n";
+    }
+    if (q.internalFaceCount > 0) {
+        os << "    Face interpolation weight : minimum: " << number(q.minFaceWeight)
+           << " average: " << number(q.averageFaceWeight) << '\n'
+           << "    Face volume ratio : minimum: " << number(q.minVolumeRatio)
+           << " average: " << number(q.averageVolumeRatio) << '\n';
+    }
+
+    const ThesisQuality& t = r.thesis;
+    os << "\nThesis quality metrics (" << t.dimension << "D, thesis section 2.7):\n"
+       << "    " << padded("metric", 28) << rightAligned("count", 9) << rightAligned("mean", 13)
+       << rightAligned("std", 13) << rightAligned("min", 13) << rightAligned("max", 13) << '\n';
+    if (t.dimension == 2) {
+        appendStatisticsRow(os, "mean ratio q (triangles)", t.triangleMeanRatio);
+        appendStatisticsRow(os, "F_shape (quadrilaterals)", t.quadrilateralShape);
+    }
+    appendStatisticsRow(os, "non-orthogonality [deg]", t.nonOrthogonality);
+    appendStatisticsRow(os, "skewness", t.skewness);
+    if (t.dimension == 2 && t.otherPolygonCount > 0) {
+        os << "    polygons with 5+ nodes (no shape metric): " << t.otherPolygonCount << '\n';
+    }
+    if (t.invertedCellCount > 0) {
+        os << " ***Inverted cells: " << t.invertedCellCount << " of " << t.cellCount << '\n';
+    } else {
+        os << "    Inverted cells: 0\n";
+    }
+
+    const int failed = q.failedCheckCount();
+    os << '\n';
+    if (failed > 0) {
+        os << "Failed " << failed << " mesh checks.\n";
+    } else if (!r.isValid()) {
+        os << "Failed: the mesh has inverted cells.\n";
+    } else {
+        os << "Mesh OK.\n";
+    }
+    return os.str();
+}
+
+namespace {
+
+// Shortest round-trip representation; null for NaN and infinities (JSON has neither).
+std::string jsonNumber(double value)
+{
+    if (!std::isfinite(value)) return "null";
+    char buffer[64];
+    const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+    return std::string(buffer, result.ptr);
+}
+
+std::string jsonVector(const Vector3& v)
+{
+    return "[" + jsonNumber(v.x) + ", " + jsonNumber(v.y) + ", " + jsonNumber(v.z) + "]";
+}
+
+std::string jsonDirections(const std::array<int, 3>& d)
+{
+    return "[" + std::to_string(d[0]) + ", " + std::to_string(d[1]) + ", " + std::to_string(d[2]) + "]";
+}
+
+std::string jsonStatistics(const QualityStatistics& s)
+{
+    if (s.count == 0) return "{\"count\": 0, \"mean\": null, \"standardDeviation\": null, \"min\": null, \"max\": null}";
+    return "{\"count\": " + std::to_string(s.count) + ", \"mean\": " + jsonNumber(s.mean) +
+           ", \"standardDeviation\": " + jsonNumber(s.standardDeviation) + ", \"min\": " + jsonNumber(s.min) +
+           ", \"max\": " + jsonNumber(s.max) + "}";
+}
+
+std::string jsonString(const std::string& text)
+{
+    std::string out = "\"";
+    for (char c : text) {
+        switch (c) {
+        case '"': out += "\\\""; break;
+        case '\\': out += "\\\\"; break;
+        case '\n': out += "\\n"; break;
+        case '\t': out += "\\t"; break;
+        default:
+            if (static_cast<unsigned char>(c) < 0x20) {
+                char escaped[8];
+                std::snprintf(escaped, sizeof escaped, "\\u%04x", static_cast<unsigned>(c));
+                out += escaped;
+            } else {
+                out += c;
+            }
+        }
+    }
+    return out + "\"";
+}
+
+} // namespace
+
+std::string qualityReportJson(const QualityReport& r)
+{
+    const CheckMeshQuality& q = r.checkMesh;
+    const ThesisQuality& t = r.thesis;
+    std::ostringstream os;
+    os << "{\n"
+       << "  \"mesh\": {\"points\": " << r.pointCount << ", \"faces\": " << r.faceCount
+       << ", \"internalFaces\": " << r.internalFaceCount << ", \"cells\": " << r.cellCount
+       << ", \"facesPerCell\": " << jsonNumber(r.facesPerCell) << ", \"boundaryPatches\": " << r.patchCount
+       << ", \"pointZones\": " << r.pointZoneCount << ", \"faceZones\": " << r.faceZoneCount
+       << ", \"cellZones\": " << r.cellZoneCount << "},\n"
+       << "  \"cellTypes\": {\"hexahedra\": " << r.cellShapeCounts[static_cast<int>(CellShape::Hexahedron)]
+       << ", \"prisms\": " << r.cellShapeCounts[static_cast<int>(CellShape::Prism)]
+       << ", \"pyramids\": " << r.cellShapeCounts[static_cast<int>(CellShape::Pyramid)]
+       << ", \"tetrahedra\": " << r.cellShapeCounts[static_cast<int>(CellShape::Tetrahedron)]
+       << ", \"polyhedra\": " << r.cellShapeCounts[static_cast<int>(CellShape::Polyhedron)] << "},\n"
+       << "  \"dimension\": " << t.dimension << ",\n"
+       << "  \"pseudoTwoD\": " << jsonString(pseudoTwoDName(r.pseudoTwoD)) << ",\n";
+    if (!r.twoDExtractionProblem.empty()) {
+        os << "  \"twoDExtractionProblem\": " << jsonString(r.twoDExtractionProblem) << ",\n";
+    }
+    os << "  \"checkMesh\": {\n"
+       << "    \"boundingBox\": {\"min\": " << jsonVector(q.boundingBoxMin) << ", \"max\": " << jsonVector(q.boundingBoxMax)
+       << "},\n"
+       << "    \"geometricDirections\": " << jsonDirections(q.geometricDirections) << ",\n"
+       << "    \"solutionDirections\": " << jsonDirections(q.solutionDirections) << ",\n"
+       << "    \"boundaryOpenness\": " << jsonVector(q.boundaryOpenness) << ",\n"
+       << "    \"maxCellOpenness\": " << jsonNumber(q.maxCellOpenness) << ",\n"
+       << "    \"openCells\": " << q.openCellCount << ",\n"
+       << "    \"maxAspectRatio\": " << jsonNumber(q.maxAspectRatio) << ",\n"
+       << "    \"highAspectRatioCells\": " << q.highAspectRatioCellCount << ",\n"
+       << "    \"minFaceArea\": " << jsonNumber(q.minFaceArea) << ",\n"
+       << "    \"maxFaceArea\": " << jsonNumber(q.maxFaceArea) << ",\n"
+       << "    \"zeroAreaFaces\": " << q.zeroAreaFaceCount << ",\n"
+       << "    \"minVolume\": " << jsonNumber(q.minCellVolume) << ",\n"
+       << "    \"maxVolume\": " << jsonNumber(q.maxCellVolume) << ",\n"
+       << "    \"totalVolume\": " << jsonNumber(q.totalVolume) << ",\n"
+       << "    \"nonPositiveVolumeCells\": " << q.nonPositiveVolumeCellCount << ",\n"
+       << "    \"maxNonOrthogonality\": " << jsonNumber(q.maxNonOrthogonality) << ",\n"
+       << "    \"averageNonOrthogonality\": " << jsonNumber(q.averageNonOrthogonality) << ",\n"
+       << "    \"severelyNonOrthogonalFaces\": " << q.severelyNonOrthogonalFaceCount << ",\n"
+       << "    \"nonOrthogonalityErrors\": " << q.nonOrthogonalityErrorCount << ",\n"
+       << "    \"incorrectlyOrientedFaces\": " << q.incorrectlyOrientedPyramidCount << ",\n"
+       << "    \"maxSkewness\": " << jsonNumber(q.maxSkewness) << ",\n"
+       << "    \"severelySkewFaces\": " << q.severelySkewFaceCount << ",\n"
+       << "    \"minFaceWeight\": " << jsonNumber(q.minFaceWeight) << ",\n"
+       << "    \"averageFaceWeight\": " << jsonNumber(q.averageFaceWeight) << ",\n"
+       << "    \"minVolumeRatio\": " << jsonNumber(q.minVolumeRatio) << ",\n"
+       << "    \"averageVolumeRatio\": " << jsonNumber(q.averageVolumeRatio) << ",\n"
+       << "    \"failedChecks\": " << q.failedCheckCount() << "\n"
+       << "  },\n"
+       << "  \"thesis\": {\n"
+       << "    \"dimension\": " << t.dimension << ",\n"
+       << "    \"cells\": " << t.cellCount << ",\n";
+    if (t.dimension == 2) {
+        os << "    \"triangleMeanRatio\": " << jsonStatistics(t.triangleMeanRatio) << ",\n"
+           << "    \"quadrilateralShape\": " << jsonStatistics(t.quadrilateralShape) << ",\n"
+           << "    \"otherPolygons\": " << t.otherPolygonCount << ",\n";
+    }
+    os << "    \"nonOrthogonality\": " << jsonStatistics(t.nonOrthogonality) << ",\n"
+       << "    \"skewness\": " << jsonStatistics(t.skewness) << ",\n"
+       << "    \"invertedCells\": " << t.invertedCellCount << "\n"
+       << "  },\n"
+       << "  \"invertedCells\": " << t.invertedCellCount << ",\n"
+       << "  \"failedChecks\": " << q.failedCheckCount() << ",\n"
+       << "  \"valid\": " << (r.isValid() ? "true" : "false") << "\n"
+       << "}\n";
+    return os.str();
+}
+
+} // namespace rbm

@@ -1,0 +1,98 @@
+#pragma once
+// Every quality figure rbm reports for a mesh, in one struct: mesh statistics and cell
+// types, checkMesh's geometry measures (CheckMeshQuality.hpp) and the thesis' metrics
+// (ThesisQuality.hpp). For a pseudo-3D mesh (one layer between empty or wedge planes) the
+// thesis metrics are the 2D ones, on the extracted planar mesh (PseudoTwoDExtraction.hpp);
+// otherwise the 3D ones.
+//
+// QualityEvaluator keeps everything that does not change when points move (topology, cell
+// types, the 2D extraction) and the work arrays, so evaluating the quality of a moved mesh
+// every time step allocates only the report itself.
+//
+// Formatting: formatQualityReport gives a checkMesh-like text report; qualityReportJson
+// the same numbers as one JSON object (non-finite numbers as null).
+
+#include "CheckMeshQuality.hpp"
+#include "MeshGeometry.hpp"
+#include "MeshTopology.hpp"
+#include "PolyMesh.hpp"
+#include "PseudoTwoDExtraction.hpp"
+#include "ThesisQuality.hpp"
+
+#include <array>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace rbm {
+
+struct QualityReport {
+    // Mesh stats, as checkMesh prints them.
+    Label pointCount = 0;
+    Label faceCount = 0;
+    Label internalFaceCount = 0;
+    Label cellCount = 0;
+    double facesPerCell = 0.0;   // (faces + internal faces) / cells
+    Label patchCount = 0;
+    Label pointZoneCount = 0;
+    Label faceZoneCount = 0;
+    Label cellZoneCount = 0;
+    // Cells of each shape, indexed by CellShape (tetrahedron, pyramid, prism, hexahedron,
+    // polyhedron).
+    std::array<Label, 5> cellShapeCounts{};
+
+    PseudoTwoDKind pseudoTwoD = PseudoTwoDKind::None;
+    // Why a mesh with empty or wedge patches is measured in 3D (extraction failed); empty otherwise.
+    std::string twoDExtractionProblem;
+
+    CheckMeshQuality checkMesh;
+    ThesisQuality thesis;
+
+    // Inverted cells as the thesis counts them (2D: area <= 0; 3D: a face pyramid <= 0).
+    Label invertedCellCount() const { return thesis.invertedCellCount; }
+    // Valid: no inverted cell and none of checkMesh's errors (non-positive volumes, wrong
+    // face pyramids, open cells, zero-area faces, faces beyond 90° non-orthogonality).
+    // checkMesh's warnings (aspect ratio > 1000, skewness > 4) do not make a mesh invalid.
+    bool isValid() const { return thesis.invertedCellCount == 0 && !checkMesh.hasInvalidCells(); }
+};
+
+class QualityEvaluator {
+public:
+    // Prepares the evaluation of `mesh` (its topology; the points may later move). The mesh
+    // must outlive the evaluator.
+    explicit QualityEvaluator(const PolyMesh& mesh);
+
+    // The report for the mesh with its points at `points` (mesh.points or moved positions).
+    QualityReport evaluate(std::span<const Vector3> points);
+    QualityReport evaluate() { return evaluate(mesh_.points); }
+
+    // The geometry computed by the last evaluate().
+    const MeshGeometry& geometry() const { return geometry_; }
+    bool isTwoD() const { return twoD_ != nullptr; }
+
+private:
+    const PolyMesh& mesh_;
+    MeshTopology topology_;
+    std::array<Label, 5> cellShapeCounts_{};
+    PseudoTwoDKind pseudoTwoD_ = PseudoTwoDKind::None;
+    std::string twoDExtractionProblem_;
+    std::unique_ptr<PseudoTwoDMesh> twoD_;
+    MeshGeometry geometry_;
+    CheckMeshWorkspace checkMeshWorkspace_;
+    ThesisQualityWorkspace thesisWorkspace_;
+    std::vector<Vector3> nodePositions_;
+};
+
+// One-off evaluation of `mesh` at its own points.
+QualityReport computeQualityReport(const PolyMesh& mesh);
+
+// checkMesh-like readable report (mesh stats, cell types, 2D/3D, checkMesh's measures with
+// its OK/*** verdicts, the thesis metrics table, inverted cells, "Mesh OK." or "Failed N
+// mesh checks.").
+std::string formatQualityReport(const QualityReport& report);
+
+// The same figures as one JSON object (see the keys in QualityReport.cpp).
+std::string qualityReportJson(const QualityReport& report);
+
+} // namespace rbm

@@ -1,0 +1,336 @@
+// Agreement of rbm's checkMesh measures with OpenFOAM v1912's own checkMesh output on the
+// meshes under tests/data/checkMesh (written, with their logs, by
+// tests/data/makeCheckMeshFixtures.sh: blockMesh, gmsh + gmshToFoam, polyDualMesh).
+//
+// The fixtures' controlDict sets writePrecision 17, which also sets the precision of
+// checkMesh's printed numbers: the logs carry full double precision. Measured: every
+// figure equals checkMesh's to all 17 printed digits (the same operations in the same
+// order); the tests allow 1e-12 relative so that a compiler contracting a*b+c into one
+// fused multiply-add cannot fail them.
+
+#include "CellShape.hpp"
+#include "CheckMeshQuality.hpp"
+#include "MeshGeometry.hpp"
+#include "MeshTopology.hpp"
+#include "PolyMeshReader.hpp"
+#include "QualityReport.hpp"
+#include "ThesisQuality.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace fs = std::filesystem;
+using rbm::Label;
+
+const fs::path fixtureRoot = fs::path(RBM_TEST_DATA_DIR) / "checkMesh";
+
+constexpr double relativeTolerance = 1e-12;
+
+std::string readText(const fs::path& path)
+{
+    std::ifstream in(path);
+    if (!in) throw std::runtime_error("cannot open " + path.string());
+    std::stringstream buffer;
+    buffer << in.rdbuf();
+    return buffer.str();
+}
+
+// The numbers checkMesh prints, parsed out of one log.
+class CheckMeshLog {
+public:
+    explicit CheckMeshLog(const fs::path& path) : path_(path), text_(readText(path)) {}
+
+    // The capture groups of the first match of `pattern`, as numbers.
+    std::optional<std::vector<double>> numbers(const std::string& pattern) const
+    {
+        std::smatch match;
+        if (!std::regex_search(text_, match, std::regex(pattern))) return std::nullopt;
+        std::vector<double> values;
+        for (std::size_t i = 1; i < match.size(); ++i) values.push_back(std::stod(match[i].str()));
+        return values;
+    }
+    std::optional<double> number(const std::string& pattern) const
+    {
+        auto values = numbers(pattern);
+        if (!values) return std::nullopt;
+        return values->at(0);
+    }
+    bool contains(const std::string& text) const { return text_.find(text) != std::string::npos; }
+    const fs::path& path() const { return path_; }
+
+private:
+    fs::path path_;
+    std::string text_;
+};
+
+const std::string real = R"(([-+]?[0-9]*\.?[0-9]+(?:[eE][-+]?[0-9]+)?))";
+const std::string vector3 = R"(\()" + real + " " + real + " " + real + R"(\))";
+
+double relativeDifference(double actual, double expected)
+{
+    return std::abs(actual - expected) / std::max(std::abs(expected), 1e-300);
+}
+
+#define EXPECT_RELATIVE(actual, expected)                                                                     \
+    EXPECT_LE(relativeDifference((actual), (expected)), relativeTolerance)                                    \
+        << #actual << " = " << (actual) << ", checkMesh: " << (expected)
+
+struct Fixture {
+    std::string name;
+    std::string time;    // "" for constant/polyMesh
+};
+
+std::ostream& operator<<(std::ostream& os, const Fixture& f) { return os << f.name << (f.time.empty() ? "" : "@" + f.time); }
+
+class CheckMeshAgreement : public ::testing::TestWithParam<Fixture> {
+protected:
+    void SetUp() override
+    {
+        const Fixture& f = GetParam();
+        const fs::path caseDir = fixtureRoot / f.name;
+        mesh_ = rbm::io::readPolyMesh(caseDir / "constant" / "polyMesh");
+        if (!f.time.empty()) mesh_.points = rbm::io::readPolyMeshPoints(caseDir / f.time / "polyMesh");
+        geometry_ = rbm::computeMeshGeometry(mesh_);
+        quality_ = rbm::computeCheckMeshQuality(mesh_, geometry_);
+        const std::string suffix = f.time.empty() ? "" : "-" + f.time;
+        plainLog_ = caseDir / ("checkMesh" + suffix + ".log");
+        allLog_ = caseDir / ("checkMesh-all" + suffix + ".log");
+    }
+
+    rbm::PolyMesh mesh_;
+    rbm::MeshGeometry geometry_;
+    rbm::CheckMeshQuality quality_;
+    fs::path plainLog_;
+    fs::path allLog_;
+};
+
+TEST_P(CheckMeshAgreement, MeshStatsAndCellTypesMatch)
+{
+    const CheckMeshLog log(plainLog_);
+    EXPECT_EQ(quality_.pointCount, log.number(R"(points:\s+(\d+))").value());
+    EXPECT_EQ(quality_.faceCount, log.number(R"(\n\s+faces:\s+(\d+))").value());
+    EXPECT_EQ(quality_.internalFaceCount, log.number(R"(internal faces:\s+(\d+))").value());
+    EXPECT_EQ(quality_.cellCount, log.number(R"(cells:\s+(\d+))").value());
+
+    const auto shapes = rbm::countCellShapes(mesh_, rbm::buildMeshTopology(mesh_));
+    using rbm::CellShape;
+    EXPECT_EQ(shapes[static_cast<int>(CellShape::Hexahedron)], log.number(R"(hexahedra:\s+(\d+))").value());
+    EXPECT_EQ(shapes[static_cast<int>(CellShape::Prism)], log.number(R"(prisms:\s+(\d+))").value());
+    EXPECT_EQ(shapes[static_cast<int>(CellShape::Pyramid)], log.number(R"(pyramids:\s+(\d+))").value());
+    EXPECT_EQ(shapes[static_cast<int>(CellShape::Tetrahedron)], log.number(R"(tetrahedra:\s+(\d+))").value());
+    // checkMesh's "wedges" and "tet wedges" are polyhedra for rbm; the fixtures have none.
+    EXPECT_EQ(log.number(R"(\n\s+wedges:\s+(\d+))").value() + log.number(R"(tet wedges:\s+(\d+))").value(), 0.0);
+    EXPECT_EQ(shapes[static_cast<int>(CellShape::Polyhedron)], log.number(R"(polyhedra:\s+(\d+))").value());
+}
+
+TEST_P(CheckMeshAgreement, BoundingBoxAndDirectionsMatch)
+{
+    const CheckMeshLog log(plainLog_);
+    const auto box = log.numbers("Overall domain bounding box " + vector3 + " " + vector3).value();
+    for (int i = 0; i < 3; ++i) {
+        EXPECT_EQ(quality_.boundingBoxMin[i], box[i]);
+        EXPECT_EQ(quality_.boundingBoxMax[i], box[3 + i]);
+    }
+    const auto geometric = log.numbers(R"(geometric \(non-empty/wedge\) directions \((\d) (\d) (\d)\))").value();
+    const auto solution = log.numbers(R"(solution \(non-empty\) directions \((\d) (\d) (\d)\))").value();
+    for (int i = 0; i < 3; ++i) {
+        EXPECT_EQ(quality_.geometricDirections[i], geometric[i]);
+        EXPECT_EQ(quality_.solutionDirections[i], solution[i]);
+    }
+}
+
+TEST_P(CheckMeshAgreement, ClosednessAndAspectRatioMatch)
+{
+    const CheckMeshLog log(plainLog_);
+    // Openness is round-off (1e-16): only its order of magnitude can agree.
+    const auto openness = log.numbers("Boundary openness " + vector3).value();
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(quality_.boundaryOpenness[i], openness[i], 1e-14);
+    // checkMesh prints the cell openness only when neither open nor high-aspect cells exist.
+    if (const auto cellOpenness = log.number("Max cell openness = " + real)) {
+        EXPECT_NEAR(quality_.maxCellOpenness, *cellOpenness, 1e-14);
+    } else {
+        EXPECT_LE(quality_.maxCellOpenness, rbm::CheckMeshQuality::closedThreshold);
+    }
+
+    const auto aspect = log.number("Max aspect ratio = " + real);
+    const auto highAspect = log.numbers("High aspect ratio cells found, Max aspect ratio: " + real +
+                                        R"(, number of cells (\d+))");
+    ASSERT_TRUE(aspect || highAspect) << log.path();
+    if (aspect) {
+        EXPECT_RELATIVE(quality_.maxAspectRatio, *aspect);
+        EXPECT_EQ(quality_.highAspectRatioCellCount, 0);
+    } else {
+        EXPECT_RELATIVE(quality_.maxAspectRatio, highAspect->at(0));
+        EXPECT_EQ(quality_.highAspectRatioCellCount, highAspect->at(1));
+    }
+}
+
+TEST_P(CheckMeshAgreement, FaceAreasAndCellVolumesMatch)
+{
+    const CheckMeshLog log(plainLog_);
+    const auto areas = log.numbers("Minimum face area = " + real + R"(\. Maximum face area = )" + real).value();
+    EXPECT_RELATIVE(quality_.minFaceArea, areas[0]);
+    EXPECT_RELATIVE(quality_.maxFaceArea, areas[1]);
+
+    const auto volumes =
+        log.numbers("Min volume = " + real + R"(\. Max volume = )" + real + R"(\.  Total volume = )" + real);
+    const auto negative = log.numbers("Minimum negative volume: " + real + R"(, Number of negative volume cells: (\d+))");
+    ASSERT_TRUE(volumes || negative) << log.path();
+    if (volumes) {
+        EXPECT_RELATIVE(quality_.minCellVolume, volumes->at(0));
+        EXPECT_RELATIVE(quality_.maxCellVolume, volumes->at(1));
+        EXPECT_RELATIVE(quality_.totalVolume, volumes->at(2));
+        EXPECT_EQ(quality_.nonPositiveVolumeCellCount, 0);
+    } else {
+        EXPECT_RELATIVE(quality_.minCellVolume, negative->at(0));
+        EXPECT_EQ(quality_.nonPositiveVolumeCellCount, negative->at(1));
+    }
+}
+
+TEST_P(CheckMeshAgreement, NonOrthogonalityMatches)
+{
+    const CheckMeshLog log(plainLog_);
+    const auto angles = log.numbers("Mesh non-orthogonality Max: " + real + " average: " + real).value();
+    EXPECT_RELATIVE(quality_.maxNonOrthogonality, angles[0]);
+    EXPECT_RELATIVE(quality_.averageNonOrthogonality, angles[1]);
+    EXPECT_EQ(quality_.severelyNonOrthogonalFaceCount,
+              log.number(R"(Number of severely non-orthogonal \(> 70 degrees\) faces: (\d+))").value_or(0));
+    EXPECT_EQ(quality_.nonOrthogonalityErrorCount, log.number(R"(Number of non-orthogonality errors: (\d+))").value_or(0));
+
+    // The thesis' 3D non-orthogonality is the same angle per internal face.
+    const auto thesis = rbm::computeThesisQuality3D(mesh_, geometry_);
+    EXPECT_RELATIVE(thesis.nonOrthogonality.max, angles[0]);
+    EXPECT_EQ(thesis.nonOrthogonality.count, quality_.internalFaceCount);
+}
+
+TEST_P(CheckMeshAgreement, FacePyramidsAndSkewnessMatch)
+{
+    const CheckMeshLog log(plainLog_);
+    const auto pyramids = log.number(R"(Error in face pyramids: (\d+) faces are incorrectly oriented)");
+    EXPECT_EQ(pyramids.has_value(), !log.contains("Face pyramids OK."));
+    EXPECT_EQ(quality_.incorrectlyOrientedPyramidCount, pyramids.value_or(0));
+
+    const auto skew = log.number("Max skewness = " + real);
+    ASSERT_TRUE(skew) << log.path();
+    EXPECT_RELATIVE(quality_.maxSkewness, *skew);
+    EXPECT_EQ(quality_.severelySkewFaceCount, log.number(R"(, (\d+) highly skew faces detected)").value_or(0));
+}
+
+TEST_P(CheckMeshAgreement, AllGeometryWeightsAndVolumeRatiosMatch)
+{
+    const CheckMeshLog log(allLog_);
+    const auto weights = log.numbers("Face interpolation weight : minimum: " + real + " average: " + real).value();
+    EXPECT_RELATIVE(quality_.minFaceWeight, weights[0]);
+    EXPECT_RELATIVE(quality_.averageFaceWeight, weights[1]);
+    EXPECT_EQ(quality_.lowWeightFaceCount,
+              log.number(R"(Faces with small interpolation weight \(< [0-9.e-]+\) found, number of faces: (\d+))")
+                  .value_or(0));
+    const auto ratios = log.numbers("Face volume ratio : minimum: " + real + " average: " + real).value();
+    EXPECT_RELATIVE(quality_.minVolumeRatio, ratios[0]);
+    EXPECT_RELATIVE(quality_.averageVolumeRatio, ratios[1]);
+    EXPECT_EQ(quality_.lowVolumeRatioFaceCount,
+              log.number(R"(Faces with small volume ratio \(< [0-9.e-]+\) found, number of faces: (\d+))").value_or(0));
+}
+
+TEST_P(CheckMeshAgreement, FailedCheckCountMatchesPlainCheckMesh)
+{
+    // Plain checkMesh on a 2D case also checks edge alignment, which rbm does not; every
+    // fixture passes that check, so the counts agree.
+    const CheckMeshLog log(plainLog_);
+    const auto failed = log.number(R"(Failed (\d+) mesh checks)");
+    EXPECT_EQ(failed.has_value(), !log.contains("\nMesh OK."));
+    EXPECT_EQ(quality_.failedCheckCount(), failed.value_or(0));
+}
+
+TEST_P(CheckMeshAgreement, QualityReportCarriesTheSameFigures)
+{
+    const rbm::QualityReport report = rbm::computeQualityReport(mesh_);
+    EXPECT_EQ(report.cellCount, quality_.cellCount);
+    EXPECT_EQ(report.checkMesh.maxNonOrthogonality, quality_.maxNonOrthogonality);
+    EXPECT_EQ(report.checkMesh.maxSkewness, quality_.maxSkewness);
+    // Valid unless checkMesh reports one of its errors (its warnings about aspect ratio and
+    // skewness do not count).
+    const CheckMeshLog log(plainLog_);
+    bool checkMeshError = false;
+    for (const char* error : {"***Zero or negative cell volume", "***Error in face pyramids", "***Open cells",
+                              "***Number of non-orthogonality errors", "***Zero or negative face area"}) {
+        checkMeshError = checkMeshError || log.contains(error);
+    }
+    EXPECT_EQ(report.isValid(), !checkMeshError);
+}
+
+INSTANTIATE_TEST_SUITE_P(Fixtures, CheckMeshAgreement,
+                         ::testing::Values(Fixture{"skewedHex", ""}, Fixture{"stretchedSkewed", ""}, Fixture{"quad2D", ""},
+                                           Fixture{"prism2D", ""},
+                                           Fixture{"tet", ""}, Fixture{"polyDual", ""},
+                                           Fixture{"quad2DMoved", "0.5"}),
+                         [](const ::testing::TestParamInfo<Fixture>& info) {
+                             std::string name = info.param.name;
+                             if (!info.param.time.empty()) name += "AtTime" + info.param.time;
+                             for (char& c : name) {
+                                 if (c == '.') c = 'p';
+                             }
+                             return name;
+                         });
+
+} // namespace
+
+namespace {
+
+// On a clean one-layer extrusion the 2D centroids are the 3D cell centres and the edge
+// normals the side-face normals: the thesis' 2D non-orthogonality of every internal edge is
+// checkMesh's angle of the matching internal face.
+class TwoDimensionalAgreement : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(TwoDimensionalAgreement, PlanarNonOrthogonalityEqualsCheckMeshs)
+{
+    const fs::path caseDir = fixtureRoot / GetParam();
+    const rbm::PolyMesh mesh = rbm::io::readPolyMesh(caseDir / "constant" / "polyMesh");
+    const rbm::QualityReport report = rbm::computeQualityReport(mesh);
+    ASSERT_EQ(report.thesis.dimension, 2) << report.twoDExtractionProblem;
+    const CheckMeshLog log(caseDir / "checkMesh.log");
+    const auto angles = log.numbers("Mesh non-orthogonality Max: " + real + " average: " + real).value();
+    EXPECT_EQ(report.thesis.nonOrthogonality.count, mesh.internalFaceCount());
+    EXPECT_NEAR(report.thesis.nonOrthogonality.max, angles[0], 1e-9);
+    EXPECT_EQ(report.thesis.invertedCellCount, 0);
+    // Shape metrics in (0, 1] on a valid mesh; every cell has one.
+    EXPECT_EQ(report.thesis.triangleMeanRatio.count + report.thesis.quadrilateralShape.count, report.cellCount);
+    for (const auto* s : {&report.thesis.triangleMeanRatio, &report.thesis.quadrilateralShape}) {
+        if (s->count == 0) continue;
+        EXPECT_GT(s->min, 0.0);
+        EXPECT_LE(s->max, 1.0 + 1e-12);
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Fixtures, TwoDimensionalAgreement, ::testing::Values("quad2D", "prism2D"));
+
+TEST(TwoDimensionalAgreement, FoldedCellsOfAMovedTwoDimensionalMeshAreInvertedPlanarCells)
+{
+    // The extraction is made on the valid initial mesh; the moved points are measured
+    // through it, so the two cells checkMesh finds with negative volume are the two
+    // inverted 2D cells.
+    const fs::path caseDir = fixtureRoot / "quad2DMoved";
+    const rbm::PolyMesh mesh = rbm::io::readPolyMesh(caseDir / "constant" / "polyMesh");
+    const auto moved = rbm::io::readPolyMeshPoints(caseDir / "0.5" / "polyMesh");
+    rbm::QualityEvaluator evaluator(mesh);
+    ASSERT_TRUE(evaluator.isTwoD());
+    const rbm::QualityReport report = evaluator.evaluate(moved);
+    EXPECT_EQ(report.thesis.dimension, 2);
+    const CheckMeshLog log(caseDir / "checkMesh-0.5.log");
+    EXPECT_EQ(report.thesis.invertedCellCount, log.number(R"(Number of negative volume cells: (\d+))").value());
+    EXPECT_FALSE(report.isValid());
+    // Evaluating the initial points again gives the valid mesh back.
+    EXPECT_TRUE(evaluator.evaluate(mesh.points).isValid());
+}
+
+} // namespace

@@ -1,0 +1,11 @@
+SetFactory("OpenCASCADE");
+Box(1) = {0, 0, 0, 2, 1.2, 1};
+Sphere(2) = {0.8, 0.6, 0.5, 0.3};
+BooleanDifference(3) = { Volume{1}; Delete; }{ Volume{2}; Delete; };
+Mesh.CharacteristicLengthMax = 0.22;
+Mesh.CharacteristicLengthMin = 0.06;
+Mesh.Optimize = 0;
+s() = Boundary{ Volume{3}; };
+Physical Surface("walls") = {s()};
+Physical Volume("fluid") = {3};
+Mesh.MshFileVersion = 2.2;
