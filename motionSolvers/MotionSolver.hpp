@@ -1,0 +1,93 @@
+#pragma once
+// The motion-solver interface, shaped like OpenFOAM's displacement motion solvers
+// (displacementMotionSolver): a solver is built from a mesh, its coefficient dictionary
+// and the point displacement field with its boundary conditions; it holds the initial
+// points (points0) and the displacement of every mesh point; solve() computes the
+// displacement of the points the boundary conditions leave free; curPoints() is
+// points0 + displacement.
+//
+// Two ways to drive it:
+//  - from a case (rbmMoveMesh): updateBoundaryConditions(t) evaluates 0/pointDisplacement's
+//    patch conditions at time t, then solve();
+//  - from C++ (a flow or structure solver): setPatchDisplacement() prescribes a patch's
+//    displacement directly every time step, then solve().
+//
+// Points on several patches: prescribed beats sliding beats free (a point on a moving wall
+// and on a symmetry plane moves with the wall).
+
+#include "FoamDictionary.hpp"
+#include "PolyMesh.hpp"
+#include "Vector3.hpp"
+
+#include <filesystem>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace rbm::motion {
+
+class PointPatchDisplacement;
+
+// What one solve() did, for the per-time-step log line.
+struct MotionSolveReport {
+    int subStepCount = 0;
+    int iterations = 0;          // summed over sub-steps
+    double residual = 0.0;       // final residual of the last sub-step
+    double energy = 0.0;         // RBM energy of the result
+    bool converged = false;
+    std::string reason;          // PETSc's converged/diverged reason, or the iteration's
+    Label invertedCellCount = 0; // cells with non-positive volume (3D) or area (2D) in curPoints()
+    double worstQuality = 0.0;   // smallest cell quality (2D: q / F_shape; 3D: smallest pyramid ratio)
+    double wallSeconds = 0.0;
+};
+
+class MotionSolver {
+public:
+    // `pointDisplacement` is the field dictionary (0/pointDisplacement); nullptr means: every
+    // patch is fixedValue zero (empty and wedge patches excepted) until a host calls
+    // setPatchDisplacement.
+    MotionSolver(const PolyMesh& mesh, const io::Dictionary& coefficients, const io::Dictionary* pointDisplacement,
+                 std::filesystem::path caseDirectory);
+    virtual ~MotionSolver();
+    MotionSolver(const MotionSolver&) = delete;
+    MotionSolver& operator=(const MotionSolver&) = delete;
+
+    virtual std::string_view typeName() const = 0;
+
+    const PolyMesh& mesh() const { return mesh_; }
+    const io::Dictionary& coefficients() const { return coefficients_; }
+    const std::vector<Vector3>& points0() const { return points0_; }
+    std::vector<Vector3>& pointDisplacement() { return pointDisplacement_; }
+    const std::vector<Vector3>& pointDisplacement() const { return pointDisplacement_; }
+
+    // Evaluates every patch's boundary condition at `time` into pointDisplacement().
+    void updateBoundaryConditions(double time);
+    // Prescribes the displacement of a patch's points (OpenFOAM's localPoints order, one
+    // per patch point), replacing its boundary condition from then on. Throws for an
+    // unknown patch or a wrong length.
+    void setPatchDisplacement(std::string_view patchName, std::span<const Vector3> displacement);
+
+    // Computes the displacement of the free and sliding points.
+    virtual MotionSolveReport solve() = 0;
+
+    // points0 + pointDisplacement.
+    std::vector<Vector3> curPoints() const;
+
+    // Hooks for a host program: the mesh was moved to `points` by someone else (the RBM
+    // reference stays points0, as in OpenFOAM's displacement solvers) / its topology changed
+    // (not supported: throws std::logic_error).
+    virtual void movePoints(std::span<const Vector3> points);
+    virtual void updateMesh();
+
+protected:
+    const PolyMesh& mesh_;
+    io::Dictionary coefficients_;
+    std::filesystem::path caseDirectory_;
+    std::vector<Vector3> points0_;
+    std::vector<Vector3> pointDisplacement_;
+    std::vector<std::unique_ptr<PointPatchDisplacement>> patchConditions_;  // one per mesh patch
+};
+
+} // namespace rbm::motion
