@@ -6,7 +6,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-packages=(build-essential cmake pkg-config petsc-dev libvtk9-dev libgtest-dev zlib1g-dev openmpi-bin)
+packages=(build-essential cmake pkg-config petsc-dev libvtk9-dev libgtest-dev zlib1g-dev openmpi-bin libopenblas0)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

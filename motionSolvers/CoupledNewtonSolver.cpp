@@ -1,0 +1,336 @@
+#include "CoupledNewtonSolver.hpp"
+
+#include "LocalGlobalSolver.hpp"
+#include "RbmEnergy.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <optional>
+
+namespace rbm::motion {
+
+struct CoupledNewtonSolver::Context {
+    const RbmProblem* problem = nullptr;
+    std::optional<RbmEnergy> energy;  // exact energy for the current prescribed displacements
+    std::vector<double> blocks;       // Hessian values in pattern order
+    std::vector<double> work;         // gradient scratch
+    Mat jacobian = nullptr;
+    int gaussNewtonSteps = 0;         // steps recomputed with the Gauss–Newton matrix
+};
+
+namespace {
+
+using Context = CoupledNewtonSolver::Context;
+
+PetscErrorCode reportException(const char* function, const std::exception& error)
+{
+    return petscErrorFromException(function, error);
+}
+
+// Read-only view of a Vec as a span (restored on destruction).
+class ReadArray {
+public:
+    explicit ReadArray(Vec vector) : vector_(vector)
+    {
+        RBM_CHECK_PETSC(VecGetLocalSize(vector, &size_));
+        RBM_CHECK_PETSC(VecGetArrayRead(vector, &data_));
+    }
+    ~ReadArray() { (void)VecRestoreArrayRead(vector_, &data_); }
+    ReadArray(const ReadArray&) = delete;
+    ReadArray& operator=(const ReadArray&) = delete;
+    std::span<const double> span() const { return {data_, static_cast<std::size_t>(size_)}; }
+
+private:
+    Vec vector_;
+    const PetscScalar* data_ = nullptr;
+    PetscInt size_ = 0;
+};
+
+class WriteArray {
+public:
+    explicit WriteArray(Vec vector) : vector_(vector)
+    {
+        RBM_CHECK_PETSC(VecGetLocalSize(vector, &size_));
+        RBM_CHECK_PETSC(VecGetArray(vector, &data_));
+    }
+    ~WriteArray() { (void)VecRestoreArray(vector_, &data_); }
+    WriteArray(const WriteArray&) = delete;
+    WriteArray& operator=(const WriteArray&) = delete;
+    std::span<double> span() const { return {data_, static_cast<std::size_t>(size_)}; }
+
+private:
+    Vec vector_;
+    PetscScalar* data_ = nullptr;
+    PetscInt size_ = 0;
+};
+
+double energyAt(Context& context, Vec x)
+{
+    const ReadArray values(x);
+    return context.energy->value(values.span());
+}
+
+// F = P ∇E (the thesis' Eq1–Eq3 with the sliding constraints).
+PetscErrorCode formGradient(SNES, Vec x, Vec f, void* data)
+{
+    try {
+        auto& context = *static_cast<Context*>(data);
+        const ReadArray values(x);
+        const WriteArray gradient(f);
+        context.energy->gradient(values.span(), gradient.span());
+        context.problem->projectSliding(gradient.span());
+        return 0;
+    } catch (const std::exception& error) {
+        return reportException("formGradient", error);
+    }
+}
+
+PetscErrorCode formEnergy(SNES, Vec x, PetscReal* energy, void* data)
+{
+    try {
+        *energy = energyAt(*static_cast<Context*>(data), x);
+        return 0;
+    } catch (const std::exception& error) {
+        return reportException("formEnergy", error);
+    }
+}
+
+void assembleHessian(Context& context, Vec x, Mat matrix, bool includeCurvature)
+{
+    const RbmProblem& problem = *context.problem;
+    {
+        const ReadArray values(x);
+        context.energy->hessian(values.span(), context.blocks, includeCurvature);
+    }
+    problem.projectSlidingBlocks(context.blocks, problem.blockSize());
+    const BlockPattern& pattern = problem.blockPattern();
+    setBlockMatrixValues(matrix, pattern.rowOffsets, pattern.columns, problem.blockSize(), context.blocks);
+}
+
+PetscErrorCode formHessian(SNES, Vec x, Mat, Mat preconditioner, void* data)
+{
+    try {
+        assembleHessian(*static_cast<Context*>(data), x, preconditioner, true);
+        return 0;
+    } catch (const std::exception& error) {
+        return reportException("formHessian", error);
+    }
+}
+
+// Armijo backtracking on the energy along the Newton step: x_new = x − λ y, accepted when
+// E(x_new) ≤ E(x) − 1e-4 λ F·y. A step that is not a descent direction (exact Hessian
+// indefinite) is recomputed with the Gauss–Newton matrix. Near the minimum E can no
+// longer resolve the decrease (rounding); there a step that reduces ‖F‖ is accepted.
+PetscErrorCode energyLineSearch(SNESLineSearch lineSearch, void* data)
+{
+    try {
+        auto& context = *static_cast<Context*>(data);
+        Vec x = nullptr, f = nullptr, y = nullptr, w = nullptr, g = nullptr;
+        SNES snes = nullptr;
+        RBM_CHECK_PETSC(SNESLineSearchGetVecs(lineSearch, &x, &f, &y, &w, &g));
+        RBM_CHECK_PETSC(SNESLineSearchGetSNES(lineSearch, &snes));
+        RBM_CHECK_PETSC(SNESLineSearchSetReason(lineSearch, SNES_LINESEARCH_SUCCEEDED));
+
+        double fNorm = 0.0, yNorm = 0.0, slope = 0.0;
+        RBM_CHECK_PETSC(VecNorm(f, NORM_2, &fNorm));
+        RBM_CHECK_PETSC(VecNorm(y, NORM_2, &yNorm));
+        RBM_CHECK_PETSC(VecDot(f, y, &slope));
+        slope = -slope;  // dE/dλ along −y
+        if (!(slope < -1e-12 * fNorm * yNorm)) {
+            KSP ksp = nullptr;
+            RBM_CHECK_PETSC(SNESGetKSP(snes, &ksp));
+            assembleHessian(context, x, context.jacobian, false);
+            RBM_CHECK_PETSC(KSPSolve(ksp, f, y));
+            ++context.gaussNewtonSteps;
+            RBM_CHECK_PETSC(VecNorm(y, NORM_2, &yNorm));
+            RBM_CHECK_PETSC(VecDot(f, y, &slope));
+            slope = -slope;
+            if (!(slope < 0.0)) {
+                RBM_CHECK_PETSC(SNESLineSearchSetReason(lineSearch, SNES_LINESEARCH_FAILED_USER));
+                return 0;
+            }
+        }
+
+        const double energy0 = energyAt(context, x);
+        const double roundoff = 1e-13 * std::abs(energy0) + 1e-300;
+        double lambda = 1.0;
+        bool accepted = false;
+        for (int attempt = 0; attempt < 40 && !accepted; ++attempt) {
+            RBM_CHECK_PETSC(VecWAXPY(w, -lambda, y, x));
+            const double energyW = energyAt(context, w);
+            if (std::isfinite(energyW) && energyW <= energy0 + 1e-4 * lambda * slope) {
+                accepted = true;
+            } else if (std::isfinite(energyW) && energyW <= energy0 + roundoff) {
+                double gNorm = 0.0;
+                RBM_CHECK_PETSC(SNESComputeFunction(snes, w, g));
+                RBM_CHECK_PETSC(VecNorm(g, NORM_2, &gNorm));
+                accepted = gNorm < fNorm;
+            }
+            if (!accepted) {
+                // Minimiser of the quadratic through E(0), E'(0) and E(λ), kept in [0.1 λ, 0.5 λ].
+                double next = 0.5 * lambda;
+                if (std::isfinite(energyW)) {
+                    const double curvature = energyW - energy0 - slope * lambda;
+                    if (curvature > 0.0) next = -slope * lambda * lambda / (2.0 * curvature);
+                }
+                lambda = std::clamp(next, 0.1 * lambda, 0.5 * lambda);
+            }
+        }
+        if (!accepted) {
+            RBM_CHECK_PETSC(SNESLineSearchSetReason(lineSearch, SNES_LINESEARCH_FAILED_REDUCT));
+            return 0;
+        }
+        RBM_CHECK_PETSC(SNESComputeFunction(snes, w, f));
+        RBM_CHECK_PETSC(VecCopy(w, x));
+        double xNorm = 0.0;
+        RBM_CHECK_PETSC(VecNorm(x, NORM_2, &xNorm));
+        RBM_CHECK_PETSC(VecNorm(f, NORM_2, &fNorm));
+        RBM_CHECK_PETSC(SNESLineSearchSetNorms(lineSearch, xNorm, fNorm, lambda * yNorm));
+        return 0;
+    } catch (const std::exception& error) {
+        return reportException("energyLineSearch", error);
+    }
+}
+
+} // namespace
+
+CoupledNewtonSolver::CoupledNewtonSolver(const RbmProblem& problem, CoupledNewtonOptions options)
+    : problem_(problem), options_(options), petscOptions_("newton"), context_(std::make_unique<Context>())
+{
+    context_->problem = &problem;
+    const BlockPattern& pattern = problem.blockPattern();
+    const int bs = problem.blockSize();
+    context_->blocks.assign(static_cast<std::size_t>(pattern.blockCount()) * bs * bs, 0.0);
+
+    double absoluteTolerance = options.absoluteTolerance;
+    if (absoluteTolerance < 0.0) {
+        const CellNeighbourGraph& graph = problem.graph();
+        double sum = 0.0;
+        for (int i = 0; i < problem.nodeCount(); ++i) {
+            for (int e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e) {
+                Vector3 d = problem.referencePoints()[graph.neighbours[e]] - problem.referencePoints()[i];
+                if (problem.dimension() == 2) d.z = 0.0;
+                sum += problem.edgeWeights()[e] * norm(d);
+            }
+        }
+        const double meanWeightedLength = graph.edgeCount() > 0 ? sum / graph.edgeCount() : 1.0;
+        absoluteTolerance = 1e-11 * meanWeightedLength * std::sqrt(std::max(1, problem.unknownNodeCount()));
+    }
+
+    solution_ = createVector(problem.unknownCount());
+    residual_ = createVector(problem.unknownCount());
+    RBM_CHECK_PETSC(SNESCreate(PETSC_COMM_SELF, snes_.out()));
+    RBM_CHECK_PETSC(SNESSetType(snes_, SNESNEWTONLS));
+    RBM_CHECK_PETSC(SNESSetFunction(snes_, residual_, formGradient, context_.get()));
+    RBM_CHECK_PETSC(SNESSetObjective(snes_, formEnergy, context_.get()));
+    RBM_CHECK_PETSC(SNESSetTolerances(snes_, absoluteTolerance, options.relativeTolerance, 1e-14,
+                                      options.maximumIterations, 100000));
+    SNESLineSearch lineSearch = nullptr;
+    RBM_CHECK_PETSC(SNESGetLineSearch(snes_, &lineSearch));
+    RBM_CHECK_PETSC(SNESLineSearchSetType(lineSearch, SNESLINESEARCHSHELL));
+    RBM_CHECK_PETSC(SNESLineSearchShellSetUserFunc(lineSearch, energyLineSearch, context_.get()));
+    KSP ksp = nullptr;
+    RBM_CHECK_PETSC(SNESGetKSP(snes_, &ksp));
+    setDefaultLinearSolver(ksp, options.linearSolver, problem.dimension(), problem.unknownCount(),
+                           MatrixSymmetry::symmetric, options.linearRelativeTolerance);
+    configureFromOptions(snes_.get(), petscOptions_);
+    jacobian_ = createBlockMatrix(ksp, pattern.rowOffsets, pattern.columns, bs, MatrixSymmetry::symmetric, petscOptions_);
+    context_->jacobian = jacobian_;
+    RBM_CHECK_PETSC(SNESSetJacobian(snes_, jacobian_, jacobian_, formHessian, context_.get()));
+}
+
+CoupledNewtonSolver::~CoupledNewtonSolver() = default;
+
+RbmResult CoupledNewtonSolver::solve(std::span<const Vector3> prescribedDisplacement, const RbmState* initialGuess)
+{
+    problem_.checkNodeArray(prescribedDisplacement, "prescribed displacement");
+    if (problem_.unknownNodeCount() == 0) return prescribedOnlyResult(problem_, prescribedDisplacement);
+    RbmResult result;
+    std::vector<double> start(problem_.unknownCount(), 0.0);
+    if (initialGuess) {
+        // Warm start, moved onto the sliding planes: u ← c n + P (u − c n).
+        packUnknowns(problem_, *initialGuess, start);
+        std::vector<double> offset(start.size());
+        problem_.slidingOffset(prescribedDisplacement, offset);
+        for (std::size_t k = 0; k < start.size(); ++k) start[k] -= offset[k];
+        problem_.projectSliding(start);
+        for (std::size_t k = 0; k < start.size(); ++k) start[k] += offset[k];
+    } else {
+        if (!linearized_) {
+            CoupledLinearizedOptions linearOptions;
+            linearOptions.linearSolver = options_.linearSolver;
+            linearized_ = std::make_unique<CoupledLinearizedSolver>(problem_, linearOptions);
+        }
+        BlockSystemSolver::Report report;
+        start = linearized_->solveUnknowns(prescribedDisplacement, nullptr, report);
+        result.linearIterations += report.iterations;
+    }
+
+    context_->energy.emplace(problem_, RotationModel::exact, prescribedDisplacement);
+    context_->gaussNewtonSteps = 0;
+
+    // Rotations are re-fitted to the displacements (the local step of LocalGlobalSolver)
+    // before Newton starts and after it stops: at a minimum of E every node's rotation is
+    // the best fit of its own edges, so a converged state whose rotations differ from
+    // their fits is a saddle point with flipped node frames (DESIGN.md §1); Newton is
+    // restarted from the re-fitted state (at most maximumRestarts times).
+    std::vector<Matrix3> fitted;
+    const int dim = problem_.dimension();
+    const int bs = problem_.blockSize();
+    auto largestRotationMismatch = [&](std::vector<double>& unknowns) {
+        const RbmState state = unpackUnknowns(problem_, prescribedDisplacement, unknowns);
+        fitNodeRotations(problem_, state.displacement, fitted);
+        double largest = 0.0;
+        for (int a = 0; a < problem_.unknownNodeCount(); ++a) {
+            const int node = problem_.unknownNodes()[a];
+            const Vector3 parameters = rotationParameters(dim, fitted[node]);
+            double* block = unknowns.data() + static_cast<std::size_t>(a) * bs + dim;
+            const Matrix3 current = dim == 2 ? planarRotation(block[0]) : rotationFromVector({block[0], block[1], block[2]});
+            const Matrix3 relative = fitted[node].transposed() * current;
+            const double cosine = 0.5 * (relative.m[0][0] + relative.m[1][1] + relative.m[2][2] - 1.0);
+            largest = std::max(largest, std::acos(std::clamp(cosine, -1.0, 1.0)));
+            if (dim == 2) block[0] = parameters.z;
+            else for (int k = 0; k < 3; ++k) block[k] = parameters[k];
+        }
+        return largest;
+    };
+    largestRotationMismatch(start);
+
+    constexpr int maximumRestarts = 3;
+    int restarts = 0;
+    SNESConvergedReason reason = SNES_CONVERGED_ITERATING;
+    std::vector<double> unknowns(problem_.unknownCount());
+    for (;;) {
+        {
+            const WriteArray values(solution_);
+            std::copy(start.begin(), start.end(), values.span().begin());
+        }
+        RBM_CHECK_PETSC(SNESSolve(snes_, nullptr, solution_));
+        PetscInt iterations = 0, linearIterations = 0;
+        RBM_CHECK_PETSC(SNESGetIterationNumber(snes_, &iterations));
+        RBM_CHECK_PETSC(SNESGetLinearSolveIterations(snes_, &linearIterations));
+        RBM_CHECK_PETSC(SNESGetConvergedReason(snes_, &reason));
+        result.iterations += static_cast<int>(iterations);
+        result.linearIterations += static_cast<int>(linearIterations);
+        {
+            const ReadArray values(solution_);
+            std::copy(values.span().begin(), values.span().end(), unknowns.begin());
+        }
+        if (reason <= 0 || restarts == maximumRestarts) break;
+        start = unknowns;
+        if (largestRotationMismatch(start) < 1e-6) break;
+        ++restarts;
+    }
+    static_cast<RbmState&>(result) = unpackUnknowns(problem_, prescribedDisplacement, unknowns);
+    result.converged = reason > 0;
+    result.reason = convergedReasonText(reason);
+    if (context_->gaussNewtonSteps > 0)
+        result.reason += " (" + std::to_string(context_->gaussNewtonSteps) + " Gauss-Newton steps)";
+    if (restarts > 0) result.reason += " (" + std::to_string(restarts) + " restarts from re-fitted rotations)";
+    result.energy = context_->energy->value(unknowns);
+    result.residualNorm = context_->energy->projectedGradientNorm(unknowns);
+    return result;
+}
+
+} // namespace rbm::motion

@@ -1,0 +1,368 @@
+#include "PetscSupport.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace rbm::motion {
+
+void checkPetsc(PetscErrorCode code, std::string_view call)
+{
+    if (code == 0) return;
+    const char* generic = nullptr;
+    char* specific = nullptr;
+    std::string message(call);
+    if (PetscErrorMessage(code, &generic, &specific) == 0) {
+        message += ": ";
+        if (specific && specific[0] != '\0') message += specific;
+        else if (generic) message += generic;
+        else message += "unknown error";
+    }
+    message += " (PETSc error " + std::to_string(static_cast<int>(code)) + ")";
+    throw PetscException(code, message);
+}
+
+PetscErrorCode petscErrorFromException(const char* function, const std::exception& error)
+{
+    return PetscError(PETSC_COMM_SELF, __LINE__, function, __FILE__, PETSC_ERR_LIB, PETSC_ERROR_INITIAL, "%s",
+                      error.what());
+}
+
+PetscSession::PetscSession() : PetscSession(nullptr, nullptr) {}
+
+PetscSession::PetscSession(int* argc, char*** argv)
+{
+    if (!isInitialized()) {
+        RBM_CHECK_PETSC(PetscInitialize(argc, argv, nullptr, nullptr));
+        ownsInitialization_ = true;
+    }
+    RBM_CHECK_PETSC(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr));
+}
+
+PetscSession::~PetscSession()
+{
+    (void)PetscPopErrorHandler();
+    if (ownsInitialization_) (void)PetscFinalize();
+}
+
+bool PetscSession::isInitialized()
+{
+    PetscBool initialized = PETSC_FALSE;
+    if (PetscInitialized(&initialized) != 0) return false;
+    return initialized == PETSC_TRUE;
+}
+
+namespace {
+
+// How many living InheritedOptions hold each copied option name.
+std::map<std::string, int>& copiedOptionHolders()
+{
+    static std::map<std::string, int> holders;
+    return holders;
+}
+
+bool isSolverOptionStem(std::string_view name)
+{
+    for (std::string_view stem : {"ksp_", "pc_", "snes_", "mat_", "mg_", "sub_"})
+        if (name.substr(0, stem.size()) == stem) return true;
+    return false;
+}
+
+bool isOptionName(const std::string& token)
+{
+    return token.size() > 1 && token[0] == '-' && !(std::isdigit(static_cast<unsigned char>(token[1])) || token[1] == '.');
+}
+
+} // namespace
+
+InheritedOptions::InheritedOptions(std::string_view solverName) : prefix_("rbm_" + std::string(solverName) + "_")
+{
+    char* all = nullptr;
+    RBM_CHECK_PETSC(PetscOptionsGetAll(nullptr, &all));
+    std::vector<std::pair<std::string, std::string>> options;  // name without '-', value
+    {
+        std::istringstream tokens(all ? all : "");
+        std::string token;
+        while (tokens >> token) {
+            if (isOptionName(token)) options.emplace_back(token.substr(1), std::string());
+            else if (!options.empty()) options.back().second += (options.back().second.empty() ? "" : " ") + token;
+        }
+    }
+    RBM_CHECK_PETSC(PetscFree(all));
+    // Per stem the most specific source: rbm_<other solver>_ never, rbm_ over global.
+    static constexpr std::string_view solverNames[] = {"linearized_", "newton_", "laplacian_", "decoupled_"};
+    std::map<std::string, std::pair<int, std::string>> inherited;  // stem → (priority, value)
+    for (const auto& [name, value] : options) {
+        std::string_view stem = name;
+        int priority = 0;
+        if (stem.substr(0, 4) == "rbm_") {
+            stem.remove_prefix(4);
+            priority = 1;
+            bool otherSolver = false;
+            for (std::string_view solver : solverNames) otherSolver = otherSolver || stem.substr(0, solver.size()) == solver;
+            if (otherSolver) continue;
+        }
+        if (!isSolverOptionStem(stem)) continue;
+        const auto found = inherited.find(std::string(stem));
+        if (found == inherited.end()) inherited.emplace(std::string(stem), std::pair{priority, value});
+        else if (priority >= found->second.first) found->second = {priority, value};
+    }
+    for (const auto& [stem, source] : inherited) {
+        const std::string name = "-" + prefix_ + stem;
+        int& holders = copiedOptionHolders()[name];
+        if (holders == 0) {
+            PetscBool set = PETSC_FALSE;
+            RBM_CHECK_PETSC(PetscOptionsHasName(nullptr, nullptr, name.c_str(), &set));
+            if (set == PETSC_TRUE) {  // given by the user: not ours
+                copiedOptionHolders().erase(name);
+                continue;
+            }
+            RBM_CHECK_PETSC(PetscOptionsSetValue(nullptr, name.c_str(),
+                                                 source.second.empty() ? nullptr : source.second.c_str()));
+        }
+        ++holders;
+        copies_.push_back(name);
+    }
+}
+
+InheritedOptions::~InheritedOptions()
+{
+    for (const std::string& name : copies_) {
+        auto found = copiedOptionHolders().find(name);
+        if (found == copiedOptionHolders().end()) continue;
+        if (--found->second == 0) {
+            if (PetscSession::isInitialized()) (void)PetscOptionsClearValue(nullptr, name.c_str());
+            copiedOptionHolders().erase(found);
+        }
+    }
+}
+
+void configureFromOptions(KSP ksp, const InheritedOptions& options)
+{
+    RBM_CHECK_PETSC(KSPSetOptionsPrefix(ksp, options.prefix().c_str()));
+    RBM_CHECK_PETSC(KSPSetFromOptions(ksp));
+}
+
+void configureFromOptions(SNES snes, const InheritedOptions& options)
+{
+    RBM_CHECK_PETSC(SNESSetOptionsPrefix(snes, options.prefix().c_str()));
+    RBM_CHECK_PETSC(SNESSetFromOptions(snes));
+}
+
+void useDirectSolver(KSP ksp, PCType factorization)
+{
+    PC pc = nullptr;
+    RBM_CHECK_PETSC(KSPSetType(ksp, KSPPREONLY));
+    RBM_CHECK_PETSC(KSPGetPC(ksp, &pc));
+    RBM_CHECK_PETSC(PCSetType(pc, factorization));
+#if defined(PETSC_HAVE_MUMPS)
+    RBM_CHECK_PETSC(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+#endif
+}
+
+bool setDefaultLinearSolver(KSP ksp, LinearSolverKind kind, int dimension, int rowCount, MatrixSymmetry symmetry,
+                            double relativeTolerance)
+{
+    const bool direct = kind == LinearSolverKind::direct ||
+                        (kind == LinearSolverKind::automatic && (dimension == 2 || rowCount <= directSolverRowLimit));
+    RBM_CHECK_PETSC(KSPSetTolerances(ksp, relativeTolerance, PETSC_DEFAULT, PETSC_DEFAULT, 10000));
+    if (direct) {
+        useDirectSolver(ksp, symmetry == MatrixSymmetry::symmetricPositiveDefinite ? PCCHOLESKY : PCLU);
+        return true;
+    }
+    PC pc = nullptr;
+    RBM_CHECK_PETSC(KSPGetPC(ksp, &pc));
+    switch (symmetry) {
+    case MatrixSymmetry::symmetricPositiveDefinite:
+        RBM_CHECK_PETSC(KSPSetType(ksp, KSPCG));
+        RBM_CHECK_PETSC(PCSetType(pc, PCGAMG));
+        break;
+    case MatrixSymmetry::symmetric:
+        RBM_CHECK_PETSC(KSPSetType(ksp, KSPGMRES));
+        RBM_CHECK_PETSC(PCSetType(pc, PCGAMG));
+        break;
+    case MatrixSymmetry::general:
+        RBM_CHECK_PETSC(KSPSetType(ksp, KSPGMRES));
+        RBM_CHECK_PETSC(PCSetType(pc, PCILU));
+        break;
+    }
+    return false;
+}
+
+namespace {
+
+bool isType(PetscObject object, const char* type)
+{
+    PetscBool match = PETSC_FALSE;
+    RBM_CHECK_PETSC(PetscObjectTypeCompare(object, type, &match));
+    return match == PETSC_TRUE;
+}
+
+} // namespace
+
+PetscMat createBlockMatrix(KSP configuredKsp, std::span<const int> rowOffsets, std::span<const int> columns,
+                           int blockSize, MatrixSymmetry symmetry, const InheritedOptions& options)
+{
+    const int blockRows = static_cast<int>(rowOffsets.size()) - 1;
+    PC pc = nullptr;
+    RBM_CHECK_PETSC(KSPGetPC(configuredKsp, &pc));
+    const PetscObject pcObject = reinterpret_cast<PetscObject>(pc);
+    const bool symmetric = symmetry != MatrixSymmetry::general;
+    MatType type = MATSEQAIJ;
+    if (symmetric && (isType(pcObject, PCCHOLESKY) || isType(pcObject, PCICC))) {
+        type = MATSEQSBAIJ;
+    } else if (isType(pcObject, PCLU) || isType(pcObject, PCILU) || isType(pcObject, PCJACOBI) ||
+               isType(pcObject, PCPBJACOBI) || isType(pcObject, PCBJACOBI) || isType(pcObject, PCSOR) ||
+               isType(pcObject, PCNONE) || isType(pcObject, PCCHOLESKY) || isType(pcObject, PCICC)) {
+        type = blockSize > 1 ? MATSEQBAIJ : MATSEQAIJ;
+    }
+    PetscMat matrix;
+    RBM_CHECK_PETSC(MatCreate(PETSC_COMM_SELF, matrix.out()));
+    RBM_CHECK_PETSC(MatSetSizes(matrix, blockRows * blockSize, blockRows * blockSize, blockRows * blockSize,
+                                blockRows * blockSize));
+    RBM_CHECK_PETSC(MatSetBlockSize(matrix, blockSize));
+    RBM_CHECK_PETSC(MatSetType(matrix, type));
+    RBM_CHECK_PETSC(MatSetOptionsPrefix(matrix, options.prefix().c_str()));
+    RBM_CHECK_PETSC(MatSetFromOptions(matrix));
+
+    std::vector<PetscInt> blocksPerRow(blockRows), upperBlocksPerRow(blockRows);
+    for (int row = 0; row < blockRows; ++row) {
+        blocksPerRow[row] = rowOffsets[row + 1] - rowOffsets[row];
+        int upper = 0;
+        for (int position = rowOffsets[row]; position < rowOffsets[row + 1]; ++position)
+            if (columns[position] >= row) ++upper;
+        upperBlocksPerRow[row] = upper;
+    }
+    RBM_CHECK_PETSC(MatXAIJSetPreallocation(matrix, blockSize, blocksPerRow.data(), nullptr,
+                                            upperBlocksPerRow.data(), nullptr));
+    RBM_CHECK_PETSC(MatSetOption(matrix, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+    const PetscObject matrixObject = reinterpret_cast<PetscObject>(matrix.get());
+    if (isType(matrixObject, MATSEQSBAIJ) || isType(matrixObject, MATMPISBAIJ))
+        RBM_CHECK_PETSC(MatSetOption(matrix, MAT_IGNORE_LOWER_TRIANGULAR, PETSC_TRUE));
+    if (symmetric) {
+        RBM_CHECK_PETSC(MatSetOption(matrix, MAT_SYMMETRIC, PETSC_TRUE));
+        RBM_CHECK_PETSC(MatSetOption(matrix, MAT_SYMMETRY_ETERNAL, PETSC_TRUE));
+    }
+    if (symmetry == MatrixSymmetry::symmetricPositiveDefinite) RBM_CHECK_PETSC(MatSetOption(matrix, MAT_SPD, PETSC_TRUE));
+    return matrix;
+}
+
+void setBlockMatrixValues(Mat matrix, std::span<const int> rowOffsets, std::span<const int> columns, int blockSize,
+                          std::span<const double> values)
+{
+    const int blockRows = static_cast<int>(rowOffsets.size()) - 1;
+    const std::size_t area = static_cast<std::size_t>(blockSize) * blockSize;
+    if (values.size() != area * columns.size())
+        throw std::invalid_argument("setBlockMatrixValues: value array does not match the pattern");
+    const bool upperOnly = isType(reinterpret_cast<PetscObject>(matrix), MATSEQSBAIJ) ||
+                           isType(reinterpret_cast<PetscObject>(matrix), MATMPISBAIJ);
+    for (PetscInt row = 0; row < blockRows; ++row) {
+        for (int position = rowOffsets[row]; position < rowOffsets[row + 1]; ++position) {
+            const PetscInt column = columns[position];
+            if (upperOnly && column < row) continue;
+            RBM_CHECK_PETSC(MatSetValuesBlocked(matrix, 1, &row, 1, &column, values.data() + area * position,
+                                                INSERT_VALUES));
+        }
+    }
+    RBM_CHECK_PETSC(MatAssemblyBegin(matrix, MAT_FINAL_ASSEMBLY));
+    RBM_CHECK_PETSC(MatAssemblyEnd(matrix, MAT_FINAL_ASSEMBLY));
+}
+
+PetscVec createVector(int size)
+{
+    PetscVec vector;
+    RBM_CHECK_PETSC(VecCreateSeq(PETSC_COMM_SELF, size, vector.out()));
+    return vector;
+}
+
+BlockSystemSolver::BlockSystemSolver(std::span<const int> rowOffsets, std::span<const int> columns, int blockSize,
+                                     MatrixSymmetry symmetry, LinearSolverKind kind, int dimension,
+                                     double relativeTolerance, std::string_view solverName)
+    : rowOffsets_(rowOffsets.begin(), rowOffsets.end()), columns_(columns.begin(), columns.end()),
+      blockSize_(blockSize), size_((static_cast<int>(rowOffsets.size()) - 1) * blockSize), options_(solverName)
+{
+    RBM_CHECK_PETSC(KSPCreate(PETSC_COMM_SELF, ksp_.out()));
+    direct_ = setDefaultLinearSolver(ksp_, kind, dimension, size_, symmetry, relativeTolerance);
+    configureFromOptions(ksp_.get(), options_);
+    matrix_ = createBlockMatrix(ksp_, rowOffsets_, columns_, blockSize_, symmetry, options_);
+    RBM_CHECK_PETSC(KSPSetOperators(ksp_, matrix_, matrix_));
+    rightHandSide_ = createVector(size_);
+    solution_ = createVector(size_);
+    // The configured method may differ from the default (options): report what is used.
+    KSPType type = nullptr;
+    RBM_CHECK_PETSC(KSPGetType(ksp_, &type));
+    PetscBool preonly = PETSC_FALSE;
+    RBM_CHECK_PETSC(PetscStrcmp(type, KSPPREONLY, &preonly));
+    direct_ = preonly == PETSC_TRUE;
+}
+
+void BlockSystemSolver::setMatrix(std::span<const double> blockValues)
+{
+    setBlockMatrixValues(matrix_, rowOffsets_, columns_, blockSize_, blockValues);
+}
+
+namespace {
+
+void copyToVector(std::span<const double> values, Vec vector)
+{
+    PetscScalar* array = nullptr;
+    RBM_CHECK_PETSC(VecGetArray(vector, &array));
+    std::copy(values.begin(), values.end(), array);
+    RBM_CHECK_PETSC(VecRestoreArray(vector, &array));
+}
+
+void copyFromVector(Vec vector, std::span<double> values)
+{
+    const PetscScalar* array = nullptr;
+    RBM_CHECK_PETSC(VecGetArrayRead(vector, &array));
+    std::copy(array, array + values.size(), values.begin());
+    RBM_CHECK_PETSC(VecRestoreArrayRead(vector, &array));
+}
+
+} // namespace
+
+BlockSystemSolver::Report BlockSystemSolver::solve(std::span<const double> rightHandSide, std::span<double> solution,
+                                                   bool useGuess)
+{
+    if (static_cast<int>(rightHandSide.size()) != size_ || static_cast<int>(solution.size()) != size_)
+        throw std::invalid_argument("BlockSystemSolver::solve: vector sizes do not match the matrix");
+    copyToVector(rightHandSide, rightHandSide_);
+    if (useGuess) copyToVector(solution, solution_);
+    RBM_CHECK_PETSC(KSPSetInitialGuessNonzero(ksp_, useGuess ? PETSC_TRUE : PETSC_FALSE));
+    RBM_CHECK_PETSC(KSPSolve(ksp_, rightHandSide_, solution_));
+    Report report;
+    PetscInt iterations = 0;
+    KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
+    RBM_CHECK_PETSC(KSPGetIterationNumber(ksp_, &iterations));
+    RBM_CHECK_PETSC(KSPGetConvergedReason(ksp_, &reason));
+    report.iterations = direct_ ? 0 : static_cast<int>(iterations);
+    report.converged = reason > 0;
+    report.reason = convergedReasonText(reason);
+    copyFromVector(solution_, solution);
+    return report;
+}
+
+void BlockSystemSolver::multiply(std::span<const double> x, std::span<double> y) const
+{
+    copyToVector(x, solution_);
+    RBM_CHECK_PETSC(MatMult(matrix_, solution_, rightHandSide_));
+    copyFromVector(rightHandSide_, y);
+}
+
+std::string convergedReasonText(KSPConvergedReason reason)
+{
+    const char* text = KSPConvergedReasons[reason];
+    return text ? text : "KSP reason " + std::to_string(static_cast<int>(reason));
+}
+
+std::string convergedReasonText(SNESConvergedReason reason)
+{
+    const char* text = SNESConvergedReasons[reason];
+    return text ? text : "SNES reason " + std::to_string(static_cast<int>(reason));
+}
+
+} // namespace rbm::motion

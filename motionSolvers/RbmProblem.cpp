@@ -1,0 +1,396 @@
+#include "RbmProblem.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace rbm::motion {
+
+EdgeWeighting edgeWeightingFromName(std::string_view name)
+{
+    if (name == "uniform") return EdgeWeighting::uniform;
+    if (name == "inverseDistance") return EdgeWeighting::inverseDistance;
+    if (name == "inverseDistanceSquared") return EdgeWeighting::inverseDistanceSquared;
+    throw std::invalid_argument("Unknown edge weighting " + std::string(name) +
+                                ". Valid weightings are: uniform inverseDistance inverseDistanceSquared");
+}
+
+std::string_view edgeWeightingName(EdgeWeighting weighting)
+{
+    switch (weighting) {
+    case EdgeWeighting::uniform: return "uniform";
+    case EdgeWeighting::inverseDistance: return "inverseDistance";
+    case EdgeWeighting::inverseDistanceSquared: return "inverseDistanceSquared";
+    }
+    return "?";
+}
+
+RbmProblem::RbmProblem(int dimension, std::vector<Vector3> referencePoints,
+                       std::shared_ptr<const CellNeighbourGraph> graph, std::vector<NodeConstraint> constraints,
+                       EdgeWeighting weighting)
+    : dimension_(dimension), referencePoints_(std::move(referencePoints)), graph_(std::move(graph)),
+      constraints_(std::move(constraints)), weighting_(weighting)
+{
+    build();
+}
+
+RbmProblem::RbmProblem(int dimension, std::vector<Vector3> referencePoints, CellNeighbourGraph graph,
+                       std::vector<NodeConstraint> constraints, EdgeWeighting weighting)
+    : RbmProblem(dimension, std::move(referencePoints), std::make_shared<const CellNeighbourGraph>(std::move(graph)),
+                 std::move(constraints), weighting)
+{}
+
+RbmProblem RbmProblem::withReferencePoints(std::vector<Vector3> referencePoints) const
+{
+    RbmProblem moved(dimension_, std::move(referencePoints), graph_, constraints_, weighting_);
+    if (!edgeWeightFactors_.empty()) moved.setEdgeWeightFactors(edgeWeightFactors_);
+    return moved;
+}
+
+void RbmProblem::setEdgeWeightFactors(std::span<const double> factors)
+{
+    const CellNeighbourGraph& g = *graph_;
+    if (!factors.empty()) {
+        if (factors.size() != g.neighbours.size())
+            throw std::invalid_argument("RBM problem: " + std::to_string(factors.size()) +
+                                        " edge weight factors given, expected one per graph edge (" +
+                                        std::to_string(g.neighbours.size()) + ")");
+        for (int i = 0; i < nodeCount(); ++i) {
+            for (int e = g.offsets[i]; e < g.offsets[i + 1]; ++e) {
+                const double factor = factors[e];
+                if (!(factor > 0.0) || !std::isfinite(factor))
+                    throw std::invalid_argument("RBM problem: the weight factor of edge " + std::to_string(i) + "–" +
+                                                std::to_string(g.neighbours[e]) + " is not positive and finite");
+                const int j = g.neighbours[e];
+                const auto begin = g.neighbours.begin() + g.offsets[j];
+                const auto end = g.neighbours.begin() + g.offsets[j + 1];
+                const auto reverse = std::lower_bound(begin, end, i);
+                if (reverse == end || *reverse != i) continue;  // not symmetric: reported by build()
+                const double other = factors[reverse - g.neighbours.begin()];
+                if (std::abs(factor - other) > 1e-12 * std::max(factor, other))
+                    throw std::invalid_argument("RBM problem: the weight factors of edges " + std::to_string(i) + "–" +
+                                                std::to_string(j) + " and " + std::to_string(j) + "–" +
+                                                std::to_string(i) + " differ (they must be symmetric)");
+            }
+        }
+    }
+    edgeWeightFactors_.assign(factors.begin(), factors.end());
+    computeEdgeWeights();
+}
+
+void RbmProblem::checkNodeArray(std::span<const Vector3> values, std::string_view what) const
+{
+    if (static_cast<int>(values.size()) != nodeCount())
+        throw std::invalid_argument("RBM problem: " + std::string(what) + " has " + std::to_string(values.size()) +
+                                    " entries, expected one per node (" + std::to_string(nodeCount()) + ")");
+}
+
+void RbmProblem::build()
+{
+    if (dimension_ != 2 && dimension_ != 3)
+        throw std::invalid_argument("RBM problem: dimension must be 2 or 3, got " + std::to_string(dimension_));
+    if (!graph_) throw std::invalid_argument("RBM problem: no cell-neighbour graph");
+    const CellNeighbourGraph& g = *graph_;
+    const int n = nodeCount();
+    if (g.nodeCount() != n)
+        throw std::invalid_argument("RBM problem: the graph has " + std::to_string(g.nodeCount()) + " nodes but " +
+                                    std::to_string(n) + " reference points were given");
+    if (static_cast<int>(constraints_.size()) != n)
+        throw std::invalid_argument("RBM problem: " + std::to_string(constraints_.size()) +
+                                    " node constraints given, expected one per node (" + std::to_string(n) + ")");
+
+    // Sliding normals.
+    unitNormals_.assign(n, Vector3{});
+    slidingNodeCount_ = 0;
+    for (int node = 0; node < n; ++node) {
+        if (constraints_[node].kind != NodeKind::sliding) continue;
+        Vector3 normal = constraints_[node].normal;
+        if (dimension_ == 2) normal.z = 0.0;
+        const double length = norm(normal);
+        if (!(length > 0.0) || !std::isfinite(length))
+            throw std::invalid_argument("RBM problem: sliding node " + std::to_string(node) +
+                                        " has a zero or invalid plane normal");
+        unitNormals_[node] = normal / length;
+        ++slidingNodeCount_;
+    }
+
+    // Unknown numbering.
+    unknownIndex_.assign(n, -1);
+    unknownNodes_.clear();
+    for (int node = 0; node < n; ++node) {
+        if (constraints_[node].kind == NodeKind::prescribed) continue;
+        unknownIndex_[node] = static_cast<int>(unknownNodes_.size());
+        unknownNodes_.push_back(node);
+    }
+
+    computeEdgeWeights();
+
+    // Every unknown node needs neighbours, and every connected group of unknown nodes
+    // needs a prescribed neighbour; otherwise the group floats and the system is singular.
+    {
+        std::vector<int> component(n, -1);
+        std::vector<int> stack;
+        for (int start : unknownNodes_) {
+            if (g.offsets[start + 1] == g.offsets[start])
+                throw std::invalid_argument("RBM problem: unknown node " + std::to_string(start) +
+                                            " has no neighbours");
+            if (component[start] >= 0) continue;
+            bool held = false;
+            component[start] = start;
+            stack.assign(1, start);
+            while (!stack.empty()) {
+                const int i = stack.back();
+                stack.pop_back();
+                for (int e = g.offsets[i]; e < g.offsets[i + 1]; ++e) {
+                    const int j = g.neighbours[e];
+                    if (constraints_[j].kind == NodeKind::prescribed) {
+                        held = true;
+                    } else if (component[j] < 0) {
+                        component[j] = start;
+                        stack.push_back(j);
+                    }
+                }
+            }
+            if (!held)
+                throw std::invalid_argument("RBM problem: the unknown nodes connected to node " + std::to_string(start) +
+                                            " have no prescribed neighbour, so their motion is undetermined");
+        }
+    }
+
+    // Block pattern over unknown nodes: graph neighbours that are unknown, plus the diagonal.
+    const int m = unknownNodeCount();
+    blockPattern_ = BlockPattern{};
+    blockPattern_.rowOffsets.assign(m + 1, 0);
+    blockPattern_.diagonal.assign(m, -1);
+    for (int a = 0; a < m; ++a) {
+        const int i = unknownNodes_[a];
+        int count = 1;
+        for (int e = g.offsets[i]; e < g.offsets[i + 1]; ++e)
+            if (unknownIndex_[g.neighbours[e]] >= 0) ++count;
+        blockPattern_.rowOffsets[a + 1] = blockPattern_.rowOffsets[a] + count;
+    }
+    blockPattern_.columns.assign(blockPattern_.rowOffsets[m], -1);
+    edgeBlock_.assign(g.neighbours.size(), -1);
+    edgeTransposeBlock_.assign(g.neighbours.size(), -1);
+    for (int a = 0; a < m; ++a) {
+        const int i = unknownNodes_[a];
+        int position = blockPattern_.rowOffsets[a];
+        bool diagonalPlaced = false;
+        // Neighbours are sorted by node, and unknown indices grow with node numbers, so
+        // the columns come out sorted; the diagonal goes where node i would be.
+        for (int e = g.offsets[i]; e < g.offsets[i + 1]; ++e) {
+            const int j = g.neighbours[e];
+            const int b = unknownIndex_[j];
+            if (b < 0) continue;
+            if (!diagonalPlaced && b > a) {
+                blockPattern_.diagonal[a] = position;
+                blockPattern_.columns[position++] = a;
+                diagonalPlaced = true;
+            }
+            edgeBlock_[e] = position;
+            blockPattern_.columns[position++] = b;
+        }
+        if (!diagonalPlaced) {
+            blockPattern_.diagonal[a] = position;
+            blockPattern_.columns[position++] = a;
+        }
+    }
+    for (int a = 0; a < m; ++a) {
+        const auto begin = blockPattern_.columns.begin() + blockPattern_.rowOffsets[a];
+        const auto end = blockPattern_.columns.begin() + blockPattern_.rowOffsets[a + 1];
+        if (!std::is_sorted(begin, end))
+            throw std::invalid_argument("RBM problem: the neighbour lists of the graph are not sorted ascending");
+    }
+    // Transposed positions: block (j, i) for edge (i → j) is found in row b = index(j).
+    for (int a = 0; a < m; ++a) {
+        const int i = unknownNodes_[a];
+        for (int e = g.offsets[i]; e < g.offsets[i + 1]; ++e) {
+            const int b = unknownIndex_[g.neighbours[e]];
+            if (b < 0) continue;
+            const auto begin = blockPattern_.columns.begin() + blockPattern_.rowOffsets[b];
+            const auto end = blockPattern_.columns.begin() + blockPattern_.rowOffsets[b + 1];
+            const auto found = std::lower_bound(begin, end, a);
+            if (found == end || *found != a)
+                throw std::invalid_argument("RBM problem: the cell-neighbour graph is not symmetric (node " +
+                                            std::to_string(i) + " lists " + std::to_string(g.neighbours[e]) +
+                                            " but not the reverse)");
+            edgeTransposeBlock_[e] = static_cast<int>(found - blockPattern_.columns.begin());
+        }
+    }
+}
+
+void RbmProblem::computeEdgeWeights()
+{
+    const CellNeighbourGraph& g = *graph_;
+    edgeWeights_.assign(g.neighbours.size(), 0.0);
+    double lengthSum = 0.0;
+    minimumEdgeLength_ = std::numeric_limits<double>::infinity();
+    for (int i = 0; i < nodeCount(); ++i) {
+        for (int e = g.offsets[i]; e < g.offsets[i + 1]; ++e) {
+            const int j = g.neighbours[e];
+            Vector3 d = referencePoints_[j] - referencePoints_[i];
+            if (dimension_ == 2) d.z = 0.0;  // planar problems ignore z, also in distances
+            const double length = norm(d);
+            if (!(length > 0.0))
+                throw std::invalid_argument("RBM problem: neighbouring nodes " + std::to_string(i) + " and " +
+                                            std::to_string(j) + " are at the same position");
+            lengthSum += length;
+            minimumEdgeLength_ = std::min(minimumEdgeLength_, length);
+            switch (weighting_) {
+            case EdgeWeighting::uniform: edgeWeights_[e] = 1.0; break;
+            case EdgeWeighting::inverseDistance: edgeWeights_[e] = 1.0 / length; break;
+            case EdgeWeighting::inverseDistanceSquared: edgeWeights_[e] = 1.0 / (length * length); break;
+            }
+            if (!edgeWeightFactors_.empty()) edgeWeights_[e] *= edgeWeightFactors_[e];
+        }
+    }
+    if (g.neighbours.empty()) minimumEdgeLength_ = 0.0;
+    meanEdgeLength_ = g.neighbours.empty() ? 0.0 : lengthSum / static_cast<double>(g.neighbours.size());
+}
+
+double RbmProblem::shortestNeighbourDistance(int node) const
+{
+    const CellNeighbourGraph& g = *graph_;
+    double shortest = std::numeric_limits<double>::infinity();
+    for (int e = g.offsets[node]; e < g.offsets[node + 1]; ++e) {
+        Vector3 d = referencePoints_[g.neighbours[e]] - referencePoints_[node];
+        if (dimension_ == 2) d.z = 0.0;
+        shortest = std::min(shortest, norm(d));
+    }
+    return shortest;
+}
+
+void RbmProblem::projectSliding(std::span<double> blockVector, int bs) const
+{
+    if (slidingNodeCount_ == 0) return;
+    for (int a = 0; a < unknownNodeCount(); ++a) {
+        const int node = unknownNodes_[a];
+        if (constraints_[node].kind != NodeKind::sliding) continue;
+        const Vector3& n = unitNormals_[node];
+        double* u = blockVector.data() + static_cast<std::size_t>(a) * bs;
+        double normalPart = 0.0;
+        for (int k = 0; k < dimension_; ++k) normalPart += u[k] * n[k];
+        for (int k = 0; k < dimension_; ++k) u[k] -= normalPart * n[k];
+    }
+}
+
+void RbmProblem::slidingOffset(std::span<const Vector3> prescribedDisplacement, std::span<double> blockVector,
+                               int bs) const
+{
+    checkNodeArray(prescribedDisplacement, "prescribed displacement");
+    std::fill(blockVector.begin(), blockVector.end(), 0.0);
+    for (int a = 0; a < unknownNodeCount(); ++a) {
+        const int node = unknownNodes_[a];
+        if (constraints_[node].kind != NodeKind::sliding) continue;
+        const Vector3& n = unitNormals_[node];
+        Vector3 given = prescribedDisplacement[node];
+        if (dimension_ == 2) given.z = 0.0;
+        const double c = dot(n, given);
+        for (int k = 0; k < dimension_; ++k) blockVector[static_cast<std::size_t>(a) * bs + k] = c * n[k];
+    }
+}
+
+void RbmProblem::projectSlidingBlocks(std::span<double> blockValues, int bs) const
+{
+    if (slidingNodeCount_ == 0) return;
+    const int dim = dimension_;
+    const std::size_t area = static_cast<std::size_t>(bs) * bs;
+    auto normalOf = [this](int unknown) -> const Vector3* {
+        const int node = unknownNodes_[unknown];
+        return constraints_[node].kind == NodeKind::sliding ? &unitNormals_[node] : nullptr;
+    };
+    for (int a = 0; a < unknownNodeCount(); ++a) {
+        const Vector3* rowNormal = normalOf(a);
+        for (int position = blockPattern_.rowOffsets[a]; position < blockPattern_.rowOffsets[a + 1]; ++position) {
+            const Vector3* columnNormal = normalOf(blockPattern_.columns[position]);
+            if (!rowNormal && !columnNormal) continue;
+            double* block = blockValues.data() + area * position;
+            const bool isDiagonal = position == blockPattern_.diagonal[a];
+            double scale = 0.0;
+            if (isDiagonal) {
+                for (int q = 0; q < dim; ++q) scale += block[q * bs + q];
+                scale /= dim;
+            }
+            if (rowNormal) {  // P_a H: project every column's displacement rows
+                const Vector3& n = *rowNormal;
+                for (int column = 0; column < bs; ++column) {
+                    double normalPart = 0.0;
+                    for (int q = 0; q < dim; ++q) normalPart += n[q] * block[q * bs + column];
+                    for (int q = 0; q < dim; ++q) block[q * bs + column] -= normalPart * n[q];
+                }
+            }
+            if (columnNormal) {  // H P_b: project every row's displacement columns
+                const Vector3& n = *columnNormal;
+                for (int row = 0; row < bs; ++row) {
+                    double normalPart = 0.0;
+                    for (int q = 0; q < dim; ++q) normalPart += n[q] * block[row * bs + q];
+                    for (int q = 0; q < dim; ++q) block[row * bs + q] -= normalPart * n[q];
+                }
+            }
+            if (isDiagonal) {
+                const Vector3& n = *rowNormal;
+                for (int p = 0; p < dim; ++p)
+                    for (int q = 0; q < dim; ++q) block[p * bs + q] += scale * n[p] * n[q];
+            }
+        }
+    }
+}
+
+RbmResult prescribedOnlyResult(const RbmProblem& problem, std::span<const Vector3> prescribedDisplacement)
+{
+    RbmResult result;
+    static_cast<RbmState&>(result) = unpackUnknowns(problem, prescribedDisplacement, {});
+    result.converged = true;
+    result.reason = "NO_UNKNOWNS";
+    return result;
+}
+
+void packUnknowns(const RbmProblem& problem, const RbmState& state, std::span<double> unknowns)
+{
+    problem.checkNodeArray(state.displacement, "state displacement");
+    problem.checkNodeArray(state.rotation, "state rotation");
+    const int bs = problem.blockSize();
+    const int dim = problem.dimension();
+    for (int a = 0; a < problem.unknownNodeCount(); ++a) {
+        const int node = problem.unknownNodes()[a];
+        double* block = unknowns.data() + static_cast<std::size_t>(a) * bs;
+        for (int k = 0; k < dim; ++k) block[k] = state.displacement[node][k];
+        if (dim == 2) {
+            block[2] = state.rotation[node].z;
+        } else {
+            for (int k = 0; k < 3; ++k) block[3 + k] = state.rotation[node][k];
+        }
+    }
+}
+
+RbmState unpackUnknowns(const RbmProblem& problem, std::span<const Vector3> prescribedDisplacement,
+                        std::span<const double> unknowns)
+{
+    problem.checkNodeArray(prescribedDisplacement, "prescribed displacement");
+    const int n = problem.nodeCount();
+    const int bs = problem.blockSize();
+    const int dim = problem.dimension();
+    RbmState state;
+    state.displacement.assign(n, Vector3{});
+    state.rotation.assign(n, Vector3{});
+    for (int node = 0; node < n; ++node) {
+        if (problem.isUnknown(node)) continue;
+        state.displacement[node] = prescribedDisplacement[node];
+        if (dim == 2) state.displacement[node].z = 0.0;
+    }
+    for (int a = 0; a < problem.unknownNodeCount(); ++a) {
+        const int node = problem.unknownNodes()[a];
+        const double* block = unknowns.data() + static_cast<std::size_t>(a) * bs;
+        for (int k = 0; k < dim; ++k) state.displacement[node][k] = block[k];
+        if (dim == 2) {
+            state.rotation[node].z = block[2];
+        } else {
+            for (int k = 0; k < 3; ++k) state.rotation[node][k] = block[3 + k];
+        }
+    }
+    return state;
+}
+
+} // namespace rbm::motion

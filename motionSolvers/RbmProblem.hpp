@@ -1,0 +1,219 @@
+#pragma once
+// The RBM problem without any file behind it (DESIGN.md §1): reference node positions
+// x_k, the cell-neighbour graph N(k), a class per node (prescribed / free / sliding on a
+// plane), the dimension (2 or 3) and the edge weights w_ij.
+//
+// Unknowns. Every free or sliding node ("unknown node") carries a block of unknowns:
+//   2D: (u_x, u_y, θ)                       block size 3
+//   3D: (u_x, u_y, u_z, ω_x, ω_y, ω_z)      block size 6
+// u is the node's displacement, p = x + u its new position; the rotation is about the
+// node's OWN reference position (node-local): the ideal position of neighbour j seen from
+// centre i is p_i + R_i (x_j − x_i). Sign conventions: θ is counter-clockwise positive
+// (R(θ) = [cos −sin; sin cos], the transpose of the thesis' eq 2.1 matrix); ω is a
+// rotation vector (axis × angle, right-hand rule, R = exp([ω]×), Rodrigues' formula).
+// Unknown nodes are numbered compactly in increasing node order ("unknown index").
+//
+// Sliding nodes: the displacement is confined to a plane, u·n = c, with n the node's unit
+// normal and c = n·(the displacement given for that node in the prescribed-displacement
+// array). In 2D the "plane" is a line. The rotation stays free.
+//
+// 2D problems use x and y of the points; z is ignored and z displacements are zero.
+
+#include "CellNeighbourGraph.hpp"
+#include "Vector3.hpp"
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace rbm::motion {
+
+enum class NodeKind : std::uint8_t {
+    prescribed,  // displacement given (fixed = prescribed zero); only ever a neighbour, never a centre
+    free,        // displacement and rotation unknown
+    sliding,     // unknown, displacement held on a plane u·n = c
+};
+
+struct NodeConstraint {
+    NodeKind kind = NodeKind::free;
+    Vector3 normal{};  // sliding only: normal of the plane (need not be unit length; 2D uses x, y)
+};
+
+// Edge weights w_ij (DESIGN.md §1): the thesis uses uniform; 1/|d|² makes every
+// neighbour's relative deformation count alike on stretched cells and is the default.
+enum class EdgeWeighting {
+    uniform,                 // w_ij = 1 (thesis)
+    inverseDistance,         // w_ij = 1/|x_j − x_i|
+    inverseDistanceSquared,  // w_ij = 1/|x_j − x_i|²
+};
+
+// "uniform", "inverseDistance", "inverseDistanceSquared"; throws std::invalid_argument
+// listing the valid names otherwise.
+EdgeWeighting edgeWeightingFromName(std::string_view name);
+std::string_view edgeWeightingName(EdgeWeighting weighting);
+
+// Block sparsity of the coupled matrices over unknown nodes (compact numbering): row a
+// holds blocks at columns[rowOffsets[a] .. rowOffsets[a+1]), sorted ascending, the
+// diagonal block included (its position is diagonal[a]). Unknown nodes a and b share a
+// block when they are graph neighbours.
+struct BlockPattern {
+    std::vector<int> rowOffsets{0};
+    std::vector<int> columns;
+    std::vector<int> diagonal;
+
+    int rowCount() const { return static_cast<int>(rowOffsets.size()) - 1; }
+    int blockCount() const { return static_cast<int>(columns.size()); }
+};
+
+class RbmProblem {
+public:
+    // Throws std::invalid_argument for: dimension not 2 or 3, sizes that do not match the
+    // graph, a sliding node with a zero normal, two neighbours at the same position, an
+    // unknown node without neighbours, or a group of connected unknown nodes that no
+    // prescribed node holds (its motion would be undetermined).
+    RbmProblem(int dimension, std::vector<Vector3> referencePoints, std::shared_ptr<const CellNeighbourGraph> graph,
+               std::vector<NodeConstraint> constraints, EdgeWeighting weighting = EdgeWeighting::inverseDistanceSquared);
+    RbmProblem(int dimension, std::vector<Vector3> referencePoints, CellNeighbourGraph graph,
+               std::vector<NodeConstraint> constraints, EdgeWeighting weighting = EdgeWeighting::inverseDistanceSquared);
+
+    // The same graph, node classes and weighting around other reference positions (the
+    // next sub-step's mesh, thesis §2.6); weights are recomputed from the new positions.
+    RbmProblem withReferencePoints(std::vector<Vector3> referencePoints) const;
+
+    int dimension() const { return dimension_; }
+    int blockSize() const { return dimension_ == 2 ? 3 : 6; }
+    int rotationSize() const { return dimension_ == 2 ? 1 : 3; }
+    int nodeCount() const { return static_cast<int>(referencePoints_.size()); }
+    int unknownNodeCount() const { return static_cast<int>(unknownNodes_.size()); }
+    int unknownCount() const { return unknownNodeCount() * blockSize(); }
+    EdgeWeighting weighting() const { return weighting_; }
+
+    const std::vector<Vector3>& referencePoints() const { return referencePoints_; }
+    const CellNeighbourGraph& graph() const { return *graph_; }
+    const std::shared_ptr<const CellNeighbourGraph>& sharedGraph() const { return graph_; }
+    const std::vector<NodeConstraint>& constraints() const { return constraints_; }
+    NodeKind kind(int node) const { return constraints_[node].kind; }
+    bool isUnknown(int node) const { return unknownIndex_[node] >= 0; }
+
+    // Weight of the directed edge stored at position e of graph().neighbours (w_ij = w_ji).
+    const std::vector<double>& edgeWeights() const { return edgeWeights_; }
+
+    // Multiplies every edge weight by a factor: one per directed graph edge, in the order of
+    // graph().neighbours, positive and symmetric (f_ij = f_ji, so the systems stay
+    // symmetric); used to stiffen the mesh near chosen patches. Empty restores the plain
+    // weights. Kept by withReferencePoints(). Create solvers after this call: they assemble
+    // their matrices from the weights. Throws std::invalid_argument for a wrong size, a
+    // factor that is not positive and finite, or f_ij ≠ f_ji.
+    void setEdgeWeightFactors(std::span<const double> factors);
+    const std::vector<double>& edgeWeightFactors() const { return edgeWeightFactors_; }
+    // Unit normal of a sliding node (zero vector for other nodes), in the problem's dimension.
+    const Vector3& slidingNormal(int node) const { return unitNormals_[node]; }
+
+    // Node → unknown index (−1 for prescribed nodes) and unknown index → node.
+    const std::vector<int>& unknownIndex() const { return unknownIndex_; }
+    const std::vector<int>& unknownNodes() const { return unknownNodes_; }
+
+    // Block pattern of the coupled matrices and, per graph edge e = (i → j) with i and j
+    // both unknown, the positions of blocks (i, j) and (j, i) in it (−1 otherwise).
+    const BlockPattern& blockPattern() const { return blockPattern_; }
+    const std::vector<int>& edgeBlock() const { return edgeBlock_; }
+    const std::vector<int>& edgeTransposeBlock() const { return edgeTransposeBlock_; }
+
+    // Shortest and mean reference edge length (mesh size for tolerances).
+    double minimumEdgeLength() const { return minimumEdgeLength_; }
+    double meanEdgeLength() const { return meanEdgeLength_; }
+    // Shortest reference distance from a node to any of its neighbours (thesis §2.6).
+    double shortestNeighbourDistance(int node) const;
+
+    // Sliding constraint in the unknown space. A block vector has blockSize entries per
+    // unknown node with the displacement first (blockSize() for the coupled unknowns,
+    // dimension() for displacement-only systems). projectSliding removes the normal
+    // component of every sliding node's displacement (P = I − n nᵀ); rotation parts and
+    // free nodes are untouched.
+    void projectSliding(std::span<double> blockVector, int blockSize) const;
+    void projectSliding(std::span<double> blockVector) const { projectSliding(blockVector, blockSize()); }
+    // The same projection on a matrix in blockPattern() order: H ← P H P + s (I − P), with
+    // s the mean displacement diagonal of the node's block, so the matrix stays
+    // nonsingular (and symmetric positive definite if it was) and its solutions satisfy
+    // (I − P) δ = 0 for projected right-hand sides.
+    void projectSlidingBlocks(std::span<double> blockValues, int blockSize) const;
+    // The u-part offset c n of every sliding node (c = n·prescribed displacement), zero
+    // elsewhere: states with u − offset tangential satisfy every sliding constraint.
+    void slidingOffset(std::span<const Vector3> prescribedDisplacement, std::span<double> blockVector,
+                       int blockSize) const;
+    void slidingOffset(std::span<const Vector3> prescribedDisplacement, std::span<double> blockVector) const
+    {
+        slidingOffset(prescribedDisplacement, blockVector, blockSize());
+    }
+    bool hasSlidingNodes() const { return slidingNodeCount_ > 0; }
+
+    // Throws std::invalid_argument unless the array has one entry per node.
+    void checkNodeArray(std::span<const Vector3> values, std::string_view what) const;
+
+private:
+    void build();
+    void computeEdgeWeights();
+
+    int dimension_;
+    std::vector<Vector3> referencePoints_;
+    std::shared_ptr<const CellNeighbourGraph> graph_;
+    std::vector<NodeConstraint> constraints_;
+    EdgeWeighting weighting_;
+
+    std::vector<double> edgeWeights_;
+    std::vector<double> edgeWeightFactors_;
+    std::vector<Vector3> unitNormals_;
+    std::vector<int> unknownIndex_;
+    std::vector<int> unknownNodes_;
+    BlockPattern blockPattern_;
+    std::vector<int> edgeBlock_;
+    std::vector<int> edgeTransposeBlock_;
+    double minimumEdgeLength_ = 0.0;
+    double meanEdgeLength_ = 0.0;
+    int slidingNodeCount_ = 0;
+};
+
+// Per-node state: displacements and rotations of ALL nodes (prescribed nodes hold their
+// prescribed displacement and a zero rotation). 2D rotations are stored in z (θ, CCW
+// positive), 3D rotations as rotation vectors.
+struct RbmState {
+    std::vector<Vector3> displacement;
+    std::vector<Vector3> rotation;
+};
+
+// What every RBM variant returns: the state (per node, see RbmState) and how it got there.
+struct RbmResult : RbmState {
+    int iterations = 0;        // nonlinear iterations (Newton steps, local/global or fixed-point rounds); 1 for a linear solve
+    int linearIterations = 0;  // Krylov iterations summed over all linear solves (0 for direct factorisations)
+    double energy = 0.0;       // the exact coupled energy E at the result (see RbmEnergy.hpp)
+    double residualNorm = 0.0; // the variant's own optimality residual at the result (documented per solver)
+    bool converged = false;
+    std::string reason;        // why the iteration stopped, e.g. "CONVERGED_FNORM_ABS" or "maximum iterations (500)"
+};
+
+// The common interface of the variants. A solver keeps a reference to its problem (which
+// must outlive it) and may keep matrices and factorisations between solve() calls.
+class RbmSolver {
+public:
+    virtual ~RbmSolver() = default;
+    virtual const RbmProblem& problem() const = 0;
+    // Displacements and rotations of every node for the given prescribed displacements (one
+    // per node; entries of free nodes are ignored, sliding nodes use their normal component).
+    // initialGuess (optional) warm-starts the iterative variants.
+    virtual RbmResult solve(std::span<const Vector3> prescribedDisplacement, const RbmState* initialGuess = nullptr) = 0;
+};
+
+// The result for a problem without unknown nodes: the prescribed displacements, zero
+// energy, converged ("NO_UNKNOWNS"). Every solver returns it in that case.
+RbmResult prescribedOnlyResult(const RbmProblem& problem, std::span<const Vector3> prescribedDisplacement);
+
+// Packs the unknown nodes' (u, rotation) into a compact block vector of unknownCount()
+// entries, and back (prescribedDisplacement fills the prescribed nodes of the state).
+void packUnknowns(const RbmProblem& problem, const RbmState& state, std::span<double> unknowns);
+RbmState unpackUnknowns(const RbmProblem& problem, std::span<const Vector3> prescribedDisplacement,
+                        std::span<const double> unknowns);
+
+} // namespace rbm::motion
