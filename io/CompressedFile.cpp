@@ -56,22 +56,41 @@ std::string gunzip(const std::string& compressed, const fs::path& path)
     return out;
 }
 
+// fs::exists without the error_code throws std::filesystem_error for names the system
+// refuses ("File name too long", a component that is not a folder): found by fuzzing, through
+// `#include` of such a name. Any such name is treated as absent.
+bool existsQuietly(const fs::path& path)
+{
+    std::error_code error;
+    return fs::exists(path, error) && !error;
+}
+
 } // namespace
 
 fs::path resolveMaybeCompressed(const fs::path& path)
 {
-    if (fs::exists(path)) return path;
-    if (fs::exists(withGzSuffix(path))) return withGzSuffix(path);
+    if (existsQuietly(path)) return path;
+    if (existsQuietly(withGzSuffix(path))) return withGzSuffix(path);
     throw InputError(path.string(), 0, "file not found (looked for " + path.string() + " and " + withGzSuffix(path).string() + ")");
 }
 
 bool existsMaybeCompressed(const fs::path& path)
 {
-    return fs::exists(path) || fs::exists(withGzSuffix(path));
+    return existsQuietly(path) || existsQuietly(withGzSuffix(path));
 }
 
 std::string readFileContents(const fs::path& path)
 {
+    // Regular files only (found by fuzzing, through `#include "/"` and `#include "/dev/zero"`):
+    // a folder reports a huge size and made the read below allocate it (std::bad_alloc);
+    // devices read as empty or never end, FIFOs block.
+    std::error_code statusError;
+    const fs::file_status status = fs::status(path, statusError);
+    if (!statusError && fs::exists(status) && !fs::is_regular_file(status)) {
+        throw InputError(path.string(), 0,
+                         std::string("cannot read ") + (fs::is_directory(status) ? "a folder" : "a device, FIFO or socket") +
+                             " as a file (expected a regular file)");
+    }
     std::ifstream in(path, std::ios::binary | std::ios::ate);
     if (!in) throw InputError(path.string(), 0, "cannot open file for reading");
     // One read into a buffer of the file's size: no stream-buffer copy of large meshes.

@@ -27,6 +27,11 @@ namespace {
 constexpr int maximumNestingDepth = 1000;
 // Include chains longer than this are reported even when no file repeats (e.g. generated names).
 constexpr std::size_t maximumIncludeDepth = 64;
+// Most bytes (tokens and dictionaries) that `$variable` substitutions may copy while one file is
+// parsed. Each substitution copies its entry, so a chain `a1 ($a0 $a0); a2 ($a1 $a1); ...`
+// doubles at every line: 40 lines of text asked for terabytes (found by fuzzing). Real
+// dictionaries copy kilobytes.
+constexpr std::size_t maximumSubstitutedBytes = std::size_t{64} << 20;
 
 std::string describe(const Token& token)
 {
@@ -89,6 +94,23 @@ bool startsWithFoamFileHeader(std::string_view text, const std::string& fileName
     return tokenizer.next(first) && first.isWord("FoamFile");
 }
 
+// What copying tokens or a dictionary costs, in bytes, for maximumSubstitutedBytes.
+std::size_t footprint(const std::vector<Token>& tokens)
+{
+    std::size_t bytes = 0;
+    for (const Token& token : tokens) bytes += sizeof(Token) + token.text.size();
+    return bytes;
+}
+
+std::size_t footprint(const Dictionary& dictionary)
+{
+    std::size_t bytes = sizeof(Dictionary);
+    for (const Entry& entry : dictionary.entries()) {
+        bytes += sizeof(Entry) + entry.keyword().size() + (entry.isDictionary() ? footprint(entry.dictionary()) : footprint(entry.tokens()));
+    }
+    return bytes;
+}
+
 // A copy of `source` whose name, and the names of its sub-dictionaries, start at `name`.
 Dictionary renamedCopy(const Dictionary& source, const std::string& name)
 {
@@ -114,6 +136,7 @@ struct ParseState {
     std::optional<InputMode> nextEntryMode;   // from #default, #overwrite, ... (one entry)
     fs::path topFile;
     int depth = 0;                            // dictionary nesting depth
+    std::size_t substitutedBytes = 0;         // copied by $variable substitutions so far
 };
 
 // Recursive-descent parser over the tokens of one file.
@@ -134,12 +157,18 @@ private:
     int lastLine() const { return tokens_.empty() ? 0 : tokens_.back().line; }
 
     void parseEntry(Dictionary& dictionary);
+    // Kept out of parseEntry, which recurses through parseSubDictionary once per nesting level:
+    // its frame is large (10 kB with AddressSanitizer), and 1000 levels of it overflowed an
+    // 8 MB stack in the sanitizer build.
+    [[gnu::noinline]] void parsePrimitiveEntry(Dictionary& dictionary, const Token& keyword);
     std::unique_ptr<Dictionary> parseSubDictionary(const Dictionary& parent, const Token& keyword);
     void parseDirective(Dictionary& dictionary);
     void include(Dictionary& dictionary, const Token& directive, bool optional);
     void remove(Dictionary& dictionary, const Token& directive);
     void mergeVariableDictionary(Dictionary& dictionary, const Token& variable);
     void addEntry(Dictionary& dictionary, Entry entry);
+    // Counts `bytes` against maximumSubstitutedBytes; fails at `line` when over.
+    void chargeSubstitution(std::size_t bytes, int line);
 
     // The entry a `$...` token names, or tokens of an environment variable of that name.
     const Entry* resolveVariable(const Token& variable, std::vector<Token>& environmentTokens) const;
@@ -226,7 +255,11 @@ void BodyParser::parseEntry(Dictionary& dictionary)
         addEntry(dictionary, Entry(keyword.text, file_, keyword.line, std::move(sub)));
         return;
     }
+    parsePrimitiveEntry(dictionary, keyword);
+}
 
+void BodyParser::parsePrimitiveEntry(Dictionary& dictionary, const Token& keyword)
+{
     // Primitive entry: tokens up to ';' outside brackets, with $variables expanded.
     std::vector<Token> value;
     std::vector<char> openers;
@@ -295,6 +328,7 @@ void BodyParser::parseEntry(Dictionary& dictionary)
                 // `key $dict;` copies the dictionary.
                 if (value.empty() && openers.empty() && !atEnd() && tokens_[position_].isPunctuation(';')) {
                     ++position_;
+                    chargeSubstitution(footprint(entry->dictionary()), token.line);
                     addEntry(dictionary,
                              Entry(keyword.text, file_, keyword.line,
                                    std::make_unique<Dictionary>(
@@ -305,6 +339,7 @@ void BodyParser::parseEntry(Dictionary& dictionary)
                                      keyword.text + " " + token.text + ";') or as an entry of its own ('" + token.text + ";')");
             }
             const std::vector<Token>& spliced = entry != nullptr ? entry->tokens() : environmentTokens;
+            chargeSubstitution(footprint(spliced), token.line);
             for (Token t : spliced) {
                 t.line = token.line;  // report errors where the variable is used
                 value.push_back(std::move(t));
@@ -319,6 +354,15 @@ void BodyParser::parseEntry(Dictionary& dictionary)
         ++position_;
     }
     addEntry(dictionary, Entry(keyword.text, file_, keyword.line, std::move(value)));
+}
+
+void BodyParser::chargeSubstitution(std::size_t bytes, int line)
+{
+    state_.substitutedBytes += bytes;
+    if (state_.substitutedBytes > maximumSubstitutedBytes) {
+        fail(line, "$variable substitutions copy more than " + std::to_string(maximumSubstitutedBytes >> 20) +
+                       " MB: variables that repeat other variables, each doubling the text?");
+    }
 }
 
 void BodyParser::addEntry(Dictionary& dictionary, Entry entry)
@@ -621,6 +665,7 @@ void BodyParser::mergeVariableDictionary(Dictionary& dictionary, const Token& va
         fail(variable.line, "variable " + variable.text +
                                 " is used as an entry of its own, which needs a dictionary, but it names a value");
     }
+    chargeSubstitution(footprint(entry->dictionary()), variable.line);
     const Dictionary copy = renamedCopy(entry->dictionary(), dictionary.name());
     for (const Entry& e : copy.entries()) addEntry(dictionary, e);
 }
@@ -674,9 +719,12 @@ std::vector<Entry> BodyParser::parseDictionaryList(Dictionary& root)
 // binary (words). The size of a binary element's scalars (4 or 8 bytes) follows from the byte
 // count, so a list packed from an ascii file (FoamTokenizer) decodes whatever header the
 // caller passes; the tokenizer already cut the data with the file's own header.
+// `maxCount` bounds the size before anything is allocated: the size of a uniform list
+// `N{value}` is not bounded by the text (a pointDisplacement with `2000000000{(0 0 0)}` asked for
+// 48 GB; found by fuzzing).
 template <class T, class ReadOne, class DecodeBinary>
 std::vector<T> readListOf(TokenStream& stream, const std::string& what, ReadOne readOne, std::size_t scalarsPerElement,
-                          DecodeBinary decode)
+                          DecodeBinary decode, std::size_t maxCount)
 {
     if (!stream.atEnd() && stream.peek().kind == Token::Kind::Word && stream.peek().text.rfind("List<", 0) == 0) {
         stream.next();
@@ -687,6 +735,10 @@ std::vector<T> readListOf(TokenStream& stream, const std::string& what, ReadOne 
         std::int64_t count = 0;
         if (!parseInteger(first, count) || count < 0) stream.fail("expected the size of a " + what + " but found " + describe(first));
         const int countLine = first.line;
+        if (static_cast<std::uint64_t>(count) > maxCount) {
+            stream.fail("the size " + std::to_string(count) + " of a " + what + " is larger than the " + std::to_string(maxCount) +
+                        " elements expected here");
+        }
         stream.next();
         if (stream.atEnd()) stream.fail("expected '(' after the size " + std::to_string(count) + " of a " + what);
         const Token& open = stream.peek();
@@ -742,8 +794,16 @@ std::vector<T> readListOf(TokenStream& stream, const std::string& what, ReadOne 
         values.push_back(readOne());
     }
     stream.next();
+    if (values.size() > maxCount) {
+        throw InputError(stream.file(), openLine,
+                         "the " + what + " has " + std::to_string(values.size()) + " elements, more than the " +
+                             std::to_string(maxCount) + " expected here");
+    }
     return values;
 }
+
+// Without a size the caller expects, lists are bounded by what a 32-bit label can count.
+constexpr std::size_t largestListSize = static_cast<std::size_t>(std::numeric_limits<Label>::max());
 
 double decodeScalar(const char* bytes, int scalarBytes)
 {
@@ -866,12 +926,22 @@ Vector3 TokenStream::readVector()
 
 std::vector<double> TokenStream::readScalarList()
 {
+    return readScalarList(largestListSize);
+}
+
+std::vector<double> TokenStream::readScalarList(std::size_t maxCount)
+{
     return readListOf<double>(
         *this, "scalar list", [&] { return readScalar(); }, 1,
-        [](const char* bytes, std::size_t scalarBytes, int) { return decodeScalar(bytes, static_cast<int>(scalarBytes)); });
+        [](const char* bytes, std::size_t scalarBytes, int) { return decodeScalar(bytes, static_cast<int>(scalarBytes)); }, maxCount);
 }
 
 std::vector<Label> TokenStream::readLabelList()
+{
+    return readLabelList(largestListSize);
+}
+
+std::vector<Label> TokenStream::readLabelList(std::size_t maxCount)
 {
     return readListOf<Label>(
         *this, "label list", [&] { return readLabel(); }, 1,
@@ -887,24 +957,34 @@ std::vector<Label> TokenStream::readLabelList()
                 throw InputError(file_, line, "label " + std::to_string(value) + " does not fit in 32 bits");
             }
             return static_cast<Label>(value);
-        });
+        }, maxCount);
 }
 
 std::vector<Vector3> TokenStream::readVectorList()
+{
+    return readVectorList(largestListSize);
+}
+
+std::vector<Vector3> TokenStream::readVectorList(std::size_t maxCount)
 {
     return readListOf<Vector3>(
         *this, "vector list", [&] { return readVector(); }, 3, [](const char* bytes, std::size_t scalarBytes, int) {
             const int size = static_cast<int>(scalarBytes);
             return Vector3{decodeScalar(bytes, size), decodeScalar(bytes + scalarBytes, size),
                            decodeScalar(bytes + 2 * scalarBytes, size)};
-        });
+        }, maxCount);
 }
 
 std::vector<std::string> TokenStream::readWordList()
 {
+    return readWordList(largestListSize);
+}
+
+std::vector<std::string> TokenStream::readWordList(std::size_t maxCount)
+{
     return readListOf<std::string>(
         *this, "word list", [&] { return readWordOrString(); }, 0,
-        [](const char*, std::size_t, int) { return std::string(); });
+        [](const char*, std::size_t, int) { return std::string(); }, maxCount);
 }
 
 // ---------------------------------------------------------------------------------------

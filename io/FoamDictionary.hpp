@@ -75,6 +75,14 @@ public:
     std::vector<Label> readLabelList();
     std::vector<Vector3> readVectorList();
     std::vector<std::string> readWordList();
+    // The same with at most `maxCount` elements; a larger size is an error raised before
+    // anything is allocated. Use these when the expected size is known (a field's number of
+    // points): the size of a uniform list `N{value}` is not bounded by the file's length.
+    // Without `maxCount`, sizes up to the largest 32-bit label are accepted.
+    std::vector<double> readScalarList(std::size_t maxCount);
+    std::vector<Label> readLabelList(std::size_t maxCount);
+    std::vector<Vector3> readVectorList(std::size_t maxCount);
+    std::vector<std::string> readWordList(std::size_t maxCount);
 
     // Error at the current token (or at the last one when at end).
     [[noreturn]] void fail(const std::string& message) const;

@@ -1,6 +1,8 @@
 #include "FoamDictionaryWriter.hpp"
 
 #include "FoamListIO.hpp"
+#include "FoamTokenizer.hpp"
+#include "KeywordPattern.hpp"
 
 #include <charconv>
 #include <cstring>
@@ -142,7 +144,29 @@ Token punctuationToken(char c)
 
 bool keywordNeedsQuotes(std::string_view keyword)
 {
-    return keyword.empty() || keyword.front() == '(' || keyword.find_first_of(" \t\n\"';{}*?|[]^$\\+") != std::string_view::npos;
+    // Unquoted, the keyword must read back as the one word it is: not a number ("12"), a
+    // directive ("#x"), a variable ("$x"), the header ("FoamFile"), nor text that ends a
+    // word or starts a comment (found by fuzzing: such keywords were written bare and did not
+    // parse again).
+    bool readsBackAsWord = !keyword.empty() && keyword.front() != '#' && keyword.front() != '$' && keyword != "FoamFile";
+    if (readsBackAsWord) {
+        try {
+            FoamTokenizer tokenizer(keyword, "");
+            Token token;
+            readsBackAsWord = tokenizer.next(token) && token.kind == Token::Kind::Word && token.text == keyword &&
+                              !tokenizer.next(token);
+        } catch (const InputError&) {
+            readsBackAsWord = false;
+        }
+    }
+    if (!readsBackAsWord) return true;
+    // A word that looks like an expression but is none (`a++`, `?a$`) stays bare: quoted, it
+    // would be rejected as an invalid expression when read again (found by fuzzing).
+    std::string reason;
+    if (isPatternKeyword(keyword) && !isValidPattern(std::string(keyword), reason)) return false;
+    // Expressions are quoted, as OpenFOAM treats only quoted keywords as expressions; so are
+    // quotes, which OpenFOAM's words may not hold.
+    return keyword.find_first_of("'*?|[]^$\\+") != std::string_view::npos;
 }
 
 void appendTokens(std::string& out, const std::vector<Token>& tokens, int precision)

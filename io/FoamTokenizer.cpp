@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 
 namespace rbm::io {
 
@@ -280,6 +281,11 @@ bool FoamTokenizer::next(Token& token)
         if (binaryState_ == 1) binaryListWord_ = token.text;
     } else if (binaryState_ == 1 && token.kind == Token::Kind::Number && token.isInteger && token.number >= 0 &&
                (header_.isBinary() || token.number >= static_cast<double>(packedListThreshold))) {
+        // A size beyond 32-bit labels made the conversion below undefined and the byte count
+        // wrap around (found by fuzzing: `List<vector> 3e125`-like spellings of integers).
+        if (token.number > static_cast<double>(std::numeric_limits<std::int32_t>::max())) {
+            fail(token.line, "the size " + token.text + " of a " + binaryListWord_ + " is larger than 32-bit labels can count");
+        }
         binaryCount_ = static_cast<long long>(token.number);
         binaryCountLine_ = token.line;
         binaryState_ = 2;
@@ -323,6 +329,15 @@ bool FoamTokenizer::packAsciiList(Token& token)
     const bool isVector = binaryListWord_ == "List<vector>";
     const bool isLabel = binaryListWord_ == "List<label>";
     const std::size_t count = static_cast<std::size_t>(binaryCount_);
+    // The packed bytes are allocated before the elements are read: the size must be one the
+    // rest of the text can hold (at least "0 " per number, "(0 0 0)" per vector), or a corrupt
+    // size such as 2000000000 allocates gigabytes (found by fuzzing).
+    const std::size_t smallestElement = isVector ? 7 : 2;
+    if (count > (text_.size() - position_) / smallestElement + 1) {
+        fail(binaryCountLine_, "the size " + std::to_string(count) + " of a " + binaryListWord_ +
+                                   " is larger than the rest of the file can hold (" +
+                                   std::to_string(text_.size() - position_) + " bytes)");
+    }
     std::string bytes;
     bytes.resize(count * binaryElementBytes_);
     char* out = bytes.data();

@@ -80,7 +80,7 @@ std::vector<Vector3> readVectorFieldValue(const Entry& entry, const FoamFileHead
         values.assign(expectedSize, stream.readVector());
     } else if (kind == "nonuniform") {
         uniform = false;
-        values = stream.readVectorList();
+        values = stream.readVectorList(expectedSize);
         if (values.size() != expectedSize) {
             throw InputError(entry.file(), entry.line(),
                              what + " has " + std::to_string(values.size()) + " values but " + std::to_string(expectedSize) +

@@ -27,6 +27,13 @@ struct MeshFile {
     FoamListReader listReader() const { return FoamListReader(text, bodyOffset, path.string(), header); }
 };
 
+// fs::is_directory without an error_code throws for names the system refuses (too long).
+bool isFolder(const fs::path& path)
+{
+    std::error_code error;
+    return fs::is_directory(path, error) && !error;
+}
+
 MeshFile openMeshFile(const fs::path& pathWithoutGz)
 {
     MeshFile file;
@@ -113,6 +120,10 @@ std::vector<T> decodeListEntry(const Entry& entry, std::string_view what, std::s
     const Token* token = at(i);
     if (count >= 0 && (token == nullptr || token->kind == Token::Kind::Binary)) {
         // Binary block (or nothing after a bare 0, OpenFOAM's empty binary list).
+        // Lists of words are never binary: without this check `inGroups 2000000000;` passed the
+        // byte count (0 bytes per word) and reserved room for 2e9 strings (found by fuzzing).
+        if (elementBytes == 0 && count > 0)
+            failEntry(entry, token, "expected '(' after the size " + std::to_string(count) + " of the list of " + plural);
         const std::string empty;
         const std::string& bytes = token ? token->text : empty;
         if (bytes.size() != static_cast<std::size_t>(count) * elementBytes)
@@ -286,12 +297,12 @@ std::vector<Zone> readZonesFile(const fs::path& file, std::string_view labelsKey
 std::vector<Vector3> readPolyMeshPoints(const fs::path& path)
 {
     fs::path file = path;
-    if (!fs::exists(path) && !existsMaybeCompressed(path))
+    if (!existsMaybeCompressed(path))
         throw InputError(path.string(), 0, "not found (expected a time folder, a polyMesh folder or a points file)");
-    if (fs::is_directory(path)) {
+    if (isFolder(path)) {
         // A polyMesh folder, or a time folder holding one.
-        file = !existsMaybeCompressed(path / "points") && fs::is_directory(path / "polyMesh") ? path / "polyMesh" / "points"
-                                                                                               : path / "points";
+        file = !existsMaybeCompressed(path / "points") && isFolder(path / "polyMesh") ? path / "polyMesh" / "points"
+                                                                                       : path / "points";
     }
     return readPointsOf(openMeshFile(file));
 }
@@ -340,7 +351,7 @@ void checkPatchRanges(const std::vector<Patch>& patches, Label internalFaceCount
 
 PolyMesh readPolyMesh(const fs::path& polyMeshDir)
 {
-    if (!fs::is_directory(polyMeshDir))
+    if (!isFolder(polyMeshDir))
         throw InputError(polyMeshDir.string(), 0, "polyMesh folder not found (expected points, faces, owner, neighbour, boundary in it)");
     PolyMesh mesh;
 
@@ -405,7 +416,24 @@ PolyMesh readPolyMesh(const fs::path& polyMeshDir)
     mesh.neighbour = std::move(neighbour);
     {
         // Every cell label up to the largest must have at least the 4 faces of a tetrahedron;
-        // fewer means corrupt or inconsistent owner/neighbour files.
+        // fewer means corrupt or inconsistent owner/neighbour files. So the owner and neighbour
+        // entries bound the number of cells, checked before the count array is allocated: a
+        // corrupt label such as 2147483647 asked for 8 GB (and overflowed cellCount()); found
+        // by fuzzing.
+        const auto largestOf = [](const std::vector<Label>& labels) {
+            return labels.empty() ? Label{-1} : *std::max_element(labels.begin(), labels.end());
+        };
+        const Label largestOwner = largestOf(mesh.owner);
+        const Label largest = std::max(largestOwner, largestOf(mesh.neighbour));
+        const std::size_t mostCells = (mesh.owner.size() + mesh.neighbour.size()) / 4;
+        if (largest >= 0 && static_cast<std::size_t>(largest) >= mostCells) {
+            const bool inOwner = largestOwner == largest;
+            throw InputError(inOwner ? ownerFile : neighbourFile, 0,
+                             std::string(inOwner ? "owner" : "neighbour") + " cell label " + std::to_string(largest) +
+                                 " is too large: the " + std::to_string(mesh.owner.size() + mesh.neighbour.size()) +
+                                 " owner and neighbour entries make at most " + std::to_string(mostCells) +
+                                 " cells of at least 4 faces");
+        }
         std::vector<Label> facesOfCell(static_cast<std::size_t>(mesh.cellCount()), 0);
         for (Label c : mesh.owner) ++facesOfCell[static_cast<std::size_t>(c)];
         for (Label c : mesh.neighbour) ++facesOfCell[static_cast<std::size_t>(c)];

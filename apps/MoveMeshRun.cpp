@@ -1,0 +1,882 @@
+#include "MoveMeshRun.hpp"
+
+#include "CompressedFile.hpp"
+#include "FoamDictionaryWriter.hpp"
+#include "InputError.hpp"
+#include "MeshTopology.hpp"
+#include "MotionSolverRegistry.hpp"
+#include "PetscSupport.hpp"
+#include "PointPatchDisplacement.hpp"
+#include "PolyMeshReader.hpp"
+#include "PolyMeshWriter.hpp"
+#include "PseudoTwoDExtraction.hpp"
+#include "RigidBodyMotionOptions.hpp"
+#include "RigidBodyMotionSolver.hpp"
+#include "ThesisQuality.hpp"
+#include "TimeFolderWriter.hpp"
+
+#include <petscversion.h>
+
+#include <algorithm>
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <limits>
+#include <numbers>
+#include <ostream>
+#include <sstream>
+
+#ifndef RBM_VERSION
+#define RBM_VERSION "unknown"
+#endif
+
+namespace rbm::app {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start)
+{
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+double cpuSeconds()
+{
+    return static_cast<double>(std::clock()) / CLOCKS_PER_SEC;
+}
+
+std::string fixed(double value, int decimals)
+{
+    if (!std::isfinite(value)) return "n/a";
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "%.*f", decimals, value);
+    return buffer;
+}
+
+std::string general(double value, int digits = 6)
+{
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
+    return buffer;
+}
+
+// Node classes written to VTK's "nodeClass" point field.
+constexpr std::uint8_t nodeFree = 0;
+constexpr std::uint8_t nodeSliding = 1;
+constexpr std::uint8_t nodePrescribed = 2;
+
+// 3D cell quality from the face pyramids with apex at the cell centre, V_f = S_f · (C_f − C)/3
+// with S_f outward (the pyramids of the thesis' 3D inverted-cell test, ThesisQuality.hpp):
+// ratio = n_faces · min_f V_f / |V_cell|, the smallest pyramid relative to the mean one — 1
+// for a cube or a regular tetrahedron, small for flattened cells, ≤ 0 for inverted ones (the
+// same figure as the rigidBodyMotionSolver's MotionSolveReport::worstQuality in 3D).
+struct PyramidQuality {
+    double ratio = 0.0;
+    bool inverted = false;   // a pyramid or the volume <= 0, as ThesisQuality counts
+};
+
+PyramidQuality cellPyramidQuality(const PolyMesh& mesh, const MeshTopology& topology, const MeshGeometry& geometry,
+                                  Label cell)
+{
+    const auto c = static_cast<std::size_t>(cell);
+    const Vector3& centre = geometry.cellCentres[c];
+    double smallest = std::numeric_limits<double>::infinity();
+    const auto faces = topology.facesOf(cell);
+    for (const Label face : faces) {
+        const auto f = static_cast<std::size_t>(face);
+        const Vector3 area = mesh.owner[f] == cell ? geometry.faceAreas[f] : -geometry.faceAreas[f];
+        smallest = std::min(smallest, dot(area, geometry.faceCentres[f] - centre) / 3.0);
+    }
+    const double volume = geometry.cellVolumes[c];
+    PyramidQuality quality;
+    quality.inverted = smallest <= 0.0 || volume <= 0.0;
+    quality.ratio = std::abs(volume) > 0.0 ? static_cast<double>(faces.size()) * smallest / std::abs(volume) : 0.0;
+    return quality;
+}
+
+// PETSc options without an underscore in their name (the others all have one).
+bool isPetscOptionWithoutUnderscore(std::string_view argument)
+{
+    static constexpr std::string_view names[] = {"-info", "-malloc", "-nox", "-display", "-log", "-fp_trap",
+                                                 "-v",    "-checkstack"};
+    return std::find(std::begin(names), std::end(names), argument) != std::end(names);
+}
+
+bool looksLikeNumber(std::string_view text)
+{
+    double value = 0.0;
+    const auto result = std::from_chars(text.data(), text.data() + text.size(), value);
+    return result.ec == std::errc() && result.ptr == text.data() + text.size();
+}
+
+} // namespace
+
+// ---- Command line ---------------------------------------------------------------------------
+
+CommandLine parseCommandLine(int argc, const char* const* argv)
+{
+    CommandLine commandLine;
+    for (int i = 1; i < argc; ++i) {
+        const std::string argument = argv[i];
+        if (argument == "-case") {
+            if (i + 1 >= argc) throw UsageError("-case needs a case folder");
+            commandLine.options.caseDirectory = argv[++i];
+        } else if (argument == "-noVTK") {
+            commandLine.options.writeVtk = false;
+        } else if (argument == "-parallel") {
+            commandLine.options.parallel = true;
+        } else if (argument == "-writeInvalid") {
+            commandLine.options.writeInvalid = true;
+        } else if (argument == "-help" || argument == "--help" || argument == "-h") {
+            commandLine.help = true;
+        } else if (argument == "-version" || argument == "--version") {
+            commandLine.version = true;
+        } else if (argument.size() > 1 && argument[0] == '-' &&
+                   (argument.find('_') != std::string::npos || isPetscOptionWithoutUnderscore(argument))) {
+            commandLine.petscArguments.push_back(argument);
+            // Its value(s): what follows up to the next option (a negative number is a value).
+            while (i + 1 < argc && (argv[i + 1][0] != '-' || looksLikeNumber(argv[i + 1]))) {
+                commandLine.petscArguments.emplace_back(argv[++i]);
+            }
+        } else if (!argument.empty() && argument[0] == '-') {
+            throw UsageError("unknown option '" + argument + "'");
+        } else {
+            throw UsageError("unexpected argument '" + argument + "' (give the case folder with -case DIR)");
+        }
+    }
+    return commandLine;
+}
+
+std::string versionText()
+{
+    return std::string("rbmMoveMesh ") + RBM_VERSION + " (PETSc " + std::to_string(PETSC_VERSION_MAJOR) + "." +
+           std::to_string(PETSC_VERSION_MINOR) + "." + std::to_string(PETSC_VERSION_SUBMINOR) + ")";
+}
+
+namespace {
+
+// Words joined by `separator`, wrapped before column `width`; continuation lines start
+// with `indent`. `column` is where the first word starts.
+std::string wrapped(const std::vector<std::string>& words, const std::string& separator, std::size_t column,
+                    const std::string& indent, std::size_t width = 88)
+{
+    std::string out;
+    for (std::size_t i = 0; i < words.size(); ++i) {
+        const std::string piece = words[i] + (i + 1 < words.size() ? separator : "");
+        if (i > 0 && column + piece.size() > width) {
+            while (!out.empty() && out.back() == ' ') out.pop_back();
+            out += "\n" + indent;
+            column = indent.size();
+        }
+        out += piece;
+        column += piece.size();
+    }
+    return out;
+}
+
+} // namespace
+
+std::string usageText()
+{
+    const std::string indent(29, ' ');
+    std::vector<std::string> coefficients{"rigidBodyMotionSolverCoeffs", "{"};
+    for (const std::string_view keyword : motion::RigidBodyMotionOptions::keywords()) coefficients.emplace_back(keyword);
+    coefficients.emplace_back("}");
+    std::ostringstream text;
+    text << "Usage: rbmMoveMesh [-case DIR] [-noVTK] [-parallel] [-writeInvalid] [-help] [-version]\n"
+            "                   [PETSc options]\n"
+            "\n"
+            "Moves the mesh of an OpenFOAM case over time with the rigid body motion (RBM) method,\n"
+            "like OpenFOAM's moveMesh: at every time step the boundary conditions of the point\n"
+            "displacement field are evaluated, the motion solver computes the displacement of the\n"
+            "other points (total displacement relative to constant/polyMesh), and the mesh quality\n"
+            "is checked. Write times get <time>/polyMesh/points and <time>/pointDisplacement.\n"
+            "\n"
+            "Options:\n"
+            "  -case DIR       case folder (default: the current folder)\n"
+            "  -noVTK          do not write VTK/<case>_<time>.vtu and VTK/<case>.pvd\n"
+            "  -parallel       accepted; runs on more than one MPI rank are not supported yet\n"
+            "  -writeInvalid   write steps with inverted cells or without convergence anyway\n"
+            "                  (with a warning; the run goes on, the exit status is still 1)\n"
+            "  -help           print this message\n"
+            "  -version        print the version\n"
+            "  PETSc options   anything with an underscore (-ksp_type cg, -rbm_pc_type gamg,\n"
+            "                  -log_view) or -info, -malloc, -nox: passed to PETSc\n"
+            "\n"
+            "Files read:\n"
+            "  system/controlDict         startFrom (startTime|firstTime|latestTime), startTime,\n"
+            "                             endTime, deltaT, writeControl (timeStep|runTime|\n"
+            "                             adjustableRunTime|cpuTime|clockTime), writeInterval,\n"
+            "                             writeFormat (ascii|binary), writePrecision,\n"
+            "                             writeCompression (on|off), timeFormat (general|fixed|\n"
+            "                             scientific), timePrecision\n"
+            "  constant/dynamicMeshDict   motionSolver (or solver): "
+         << wrapped(motion::builtinMotionSolvers().names(), ", ", 55, indent) << ";\n"
+         << indent << wrapped(coefficients, " ", indent.size(), indent + "  ") << "\n"
+         << "  constant/polyMesh          the mesh; its points are the reference points0\n"
+            "  <time>/pointDisplacement   boundaryField: the motion of every patch, from the\n"
+            "                             earliest time folder up to the start time that has\n"
+            "                             the file; types: "
+         << wrapped(motion::builtinPointPatchDisplacements().types(), ", ", 46, indent)
+         << "\n"
+            "                             The start time's internalField warm-starts a restart.\n"
+            "\n"
+            "Files written (each time folder atomically):\n"
+            "  <time>/polyMesh/points     at write times (writeFormat, writePrecision, writeCompression)\n"
+            "  <time>/pointDisplacement   at write times (ascii)\n"
+            "  VTK/<case>_<time>.vtu      at write times and for the initial mesh; VTK/<case>.pvd\n"
+            "  postProcessing/rbmMoveMesh/<startTime>/log.jsonl   one JSON object per time step\n"
+            "\n"
+            "Log line per time step:\n"
+            "  Time = 0.025     sub-steps  1  iterations    3  residual 2.10e-10  worst quality  0.3100\n"
+            "  max non-orthogonality  28.40  inverted 0  wall   0.120 s  (one line)\n"
+            "\n"
+            "Exit status: 0 success; 1 a step with inverted cells or without convergence (nothing\n"
+            "written for it), or a failure during the run; 2 bad command line or case (nothing written).\n"
+            "See docs/rbmMoveMesh.md.\n";
+    return text.str();
+}
+
+// ---- Per-cell fields for VTK ------------------------------------------------------------------
+
+struct MoveMeshRun::CellFieldWorkspace {
+    MeshTopology topology;
+    std::optional<io::VtkCells> vtkCells;
+    std::unique_ptr<PseudoTwoDMesh> twoD;   // pseudo-3D meshes, for the 2D cell metrics
+    std::vector<Vector3> nodePositions;
+};
+
+// ---- Setup ----------------------------------------------------------------------------------
+
+MoveMeshRun::MoveMeshRun(MoveMeshOptions options, std::ostream& out, std::ostream& err)
+    : options_(std::move(options)), out_(out), err_(err), caseDirectory_(options_.caseDirectory)
+{
+    std::error_code error;
+    if (!fs::is_directory(caseDirectory_, error)) {
+        throw InputError(caseDirectory_.string(), 0, "the case folder does not exist or is not a folder");
+    }
+    {
+        fs::path absolute = fs::weakly_canonical(fs::absolute(caseDirectory_), error);
+        if (error) absolute = fs::absolute(caseDirectory_);
+        caseName_ = absolute.filename().string();
+        if (caseName_.empty() || caseName_ == "." || caseName_ == "..") caseName_ = "case";
+    }
+
+    control_ = io::readControlDict(caseDirectory_);
+    timePrecision_ = control_.timePrecision;
+    startTime_ = io::resolveStartTime(control_, caseDirectory_);
+    if (control_.endTime < startTime_) {
+        throw InputError(control_.file, 0,
+                         "endTime " + general(control_.endTime) + " is before the start time " + general(startTime_));
+    }
+    // Steps up to endTime within 1e-9 deltaT, or within the rounding of the times themselves
+    // when they are large against deltaT (16 ulps: 1.0000002 − 1 is 1.9999999 steps of 1e-7).
+    const double span = (control_.endTime - startTime_) / control_.deltaT;
+    const double roundingInSteps = 16.0 * std::numeric_limits<double>::epsilon() *
+                                   std::max(std::abs(startTime_), std::abs(control_.endTime)) / control_.deltaT;
+    endTolerance_ = std::max(1e-9, roundingInSteps);
+    stepCount_ = static_cast<int>(std::floor(span + endTolerance_));
+    if (span + endTolerance_ >= static_cast<double>(std::numeric_limits<int>::max())) {
+        throw InputError(control_.file, 0, "(endTime - startTime)/deltaT = " + general(span) + " steps: too many");
+    }
+
+    // The start folder and the folder of the boundary conditions.
+    const std::vector<io::TimeDirectory> times = io::listTimeDirectories(caseDirectory_);
+    const double timeTolerance = 1e-9 * control_.deltaT;
+    startTimeName_ = control_.timeName(startTime_);
+    for (const io::TimeDirectory& time : times) {
+        if (std::abs(time.value - startTime_) <= timeTolerance) startTimeName_ = time.name;
+    }
+    for (const io::TimeDirectory& time : times) {
+        if (time.value > startTime_ + timeTolerance) break;
+        if (io::existsMaybeCompressed(caseDirectory_ / time.name / "pointDisplacement")) {
+            boundaryFieldFile_ = caseDirectory_ / time.name / "pointDisplacement";
+            break;
+        }
+    }
+    if (boundaryFieldFile_.empty()) {
+        throw InputError((caseDirectory_ / startTimeName_ / "pointDisplacement").string(), 0,
+                         "no point displacement field: rbmMoveMesh takes the boundary conditions of the motion "
+                         "from <time>/pointDisplacement of the earliest time folder up to the start time " +
+                             startTimeName_);
+    }
+
+    mesh_ = io::readPolyMesh(caseDirectory_ / "constant" / "polyMesh");
+    dynamicMeshDict_ = io::Dictionary::readFile(caseDirectory_ / "constant" / "dynamicMeshDict");
+    const fs::path boundaryFieldPath = io::resolveMaybeCompressed(boundaryFieldFile_);
+    pointDisplacementDictionary_ = io::Dictionary::readFile(boundaryFieldPath);
+    boundaryField_ = io::readPointVectorField(boundaryFieldPath, mesh_);
+    solver_ = motion::builtinMotionSolvers().create(mesh_, dynamicMeshDict_, &pointDisplacementDictionary_,
+                                                     caseDirectory_);
+
+    // The displacement at the start time: the start folder's internalField (zero in a fresh
+    // case; the total displacement of that time in a folder an earlier run wrote). It is the
+    // initial mesh (points0 + displacement) and the warm start of the first solve. The solver's
+    // own initial state is not used: it already holds the time-independent boundary values,
+    // which would show the initial mesh with its boundary moved and its interior not.
+    std::vector<Vector3> initial(mesh_.points.size());
+    const fs::path startField = caseDirectory_ / startTimeName_ / "pointDisplacement";
+    if (io::existsMaybeCompressed(startField)) {
+        const fs::path startFieldPath = io::resolveMaybeCompressed(startField);
+        if (fs::equivalent(startFieldPath, boundaryFieldPath, error)) {
+            initial = boundaryField_.internalField;
+        } else {
+            initial = io::readPointVectorField(startFieldPath, mesh_).internalField;
+        }
+        if (std::any_of(initial.begin(), initial.end(), [](const Vector3& u) { return u != Vector3{}; })) {
+            warmStartFile_ = startFieldPath;
+        }
+    }
+    solver_->pointDisplacement() = std::move(initial);
+
+    computeNodeClasses();
+    evaluator_ = std::make_unique<QualityEvaluator>(mesh_);
+    cells_ = std::make_unique<CellFieldWorkspace>();
+    cells_->topology = buildMeshTopology(mesh_);
+    if (options_.writeVtk) {
+        cells_->vtkCells = io::vtkCellsOf(mesh_, cells_->topology);
+        if (detectPseudoTwoD(mesh_) != PseudoTwoDKind::None) {
+            try {
+                cells_->twoD = std::make_unique<PseudoTwoDMesh>(extractPseudoTwoD(mesh_, cells_->topology));
+            } catch (const InputError&) {
+                // Not a clean extrusion: the 3D cell metrics are written instead.
+            }
+        }
+        pvd_ = std::make_unique<io::PvdCollection>(caseDirectory_ / "VTK" / (caseName_ + ".pvd"));
+        pvd_->load();
+    }
+
+    timeNameWidth_ = std::max<int>(8, static_cast<int>(std::max(startTimeName_.size(),
+                                                                control_.timeName(control_.endTime).size())));
+}
+
+MoveMeshRun::~MoveMeshRun() = default;
+
+fs::path MoveMeshRun::jsonLogFile() const
+{
+    return caseDirectory_ / "postProcessing" / "rbmMoveMesh" / startTimeName_ / "log.jsonl";
+}
+
+void MoveMeshRun::computeNodeClasses()
+{
+    // The same conditions the solver built, read once more for their classes (the
+    // MotionSolver interface does not expose them): prescribed beats sliding beats free.
+    const auto conditions = motion::readPointPatchDisplacements(pointDisplacementDictionary_, mesh_, caseDirectory_);
+    nodeClasses_.assign(mesh_.points.size(), nodeFree);
+    prescribedPatches_.assign(mesh_.patches.size(), 0);
+    for (std::size_t p = 0; p < conditions.size(); ++p) {
+        std::uint8_t nodeClass = nodeFree;
+        switch (conditions[p]->nodeClass()) {
+        case motion::PatchNodeClass::prescribed:
+            nodeClass = nodePrescribed;
+            prescribedPatches_[p] = 1;
+            break;
+        case motion::PatchNodeClass::sliding: nodeClass = nodeSliding; break;
+        case motion::PatchNodeClass::free:
+        case motion::PatchNodeClass::ignored: continue;
+        }
+        for (const Label point : conditions[p]->meshPoints()) {
+            std::uint8_t& current = nodeClasses_[static_cast<std::size_t>(point)];
+            current = std::max(current, nodeClass);
+        }
+    }
+}
+
+void MoveMeshRun::printHeader() const
+{
+    auto relative = [&](const fs::path& file) {
+        std::error_code error;
+        const fs::path shown = fs::relative(file, caseDirectory_, error);
+        return (error || shown.empty()) ? file.string() : shown.string();
+    };
+    const char* startFrom = control_.startFrom == io::ControlDict::StartFrom::StartTime   ? "startTime"
+                            : control_.startFrom == io::ControlDict::StartFrom::FirstTime ? "firstTime"
+                                                                                          : "latestTime";
+    const char* writeControl = "timeStep";
+    switch (control_.writeControl) {
+    case io::ControlDict::WriteControl::TimeStep: writeControl = "timeStep"; break;
+    case io::ControlDict::WriteControl::RunTime: writeControl = "runTime"; break;
+    case io::ControlDict::WriteControl::AdjustableRunTime: writeControl = "adjustableRunTime"; break;
+    case io::ControlDict::WriteControl::CpuTime: writeControl = "cpuTime"; break;
+    case io::ControlDict::WriteControl::ClockTime: writeControl = "clockTime"; break;
+    }
+    out_ << versionText() << "\n"
+         << "Case          : " << caseDirectory_.string() << "\n"
+         << "Mesh          : " << mesh_.pointCount() << " points, " << mesh_.faceCount() << " faces, "
+         << mesh_.cellCount() << " cells, " << mesh_.patches.size() << " patches\n"
+         << "Motion solver : " << solver_->typeName();
+    if (const auto* rbmSolver = dynamic_cast<const motion::RigidBodyMotionSolver*>(solver_.get())) {
+        out_ << ": " << rbmSolver->options().describe();
+    }
+    out_ << " (constant/dynamicMeshDict)\n"
+         << "Boundary      : " << relative(boundaryFieldFile_) << "\n";
+    if (warmStartFile_) out_ << "Warm start    : " << relative(*warmStartFile_) << "\n";
+    out_ << "Time          : from " << startTimeName_ << " (startFrom " << startFrom << ") to "
+         << control_.timeName(control_.endTime) << ", deltaT " << general(control_.deltaT) << ": " << stepCount_
+         << (stepCount_ == 1 ? " step" : " steps") << "\n"
+         << "Write         : writeControl " << writeControl << ", writeInterval " << general(control_.writeInterval)
+         << ", " << (control_.binary ? "binary" : "ascii") << ", precision " << control_.writePrecision
+         << (control_.writeCompression ? ", compressed" : "") << (options_.writeVtk ? "; VTK in VTK/" : "; no VTK")
+         << (options_.writeInvalid ? "; -writeInvalid" : "") << "\n"
+         << "Log           : " << relative(jsonLogFile()) << "\n\n";
+    const double reached = stepTime(stepCount_);
+    if (std::abs(reached - control_.endTime) > endTolerance_ * control_.deltaT) {
+        err_ << "rbmMoveMesh: warning: endTime " << general(control_.endTime)
+             << " is not a whole number of time steps after the start; the run stops at " << general(reached) << "\n";
+    }
+    // As in OpenFOAM, the last time is written only when it is a write time.
+    bool lastIsWritten = true;
+    if (stepCount_ > 0 && control_.writeControl == io::ControlDict::WriteControl::TimeStep) {
+        lastIsWritten = stepCount_ % std::max<long long>(1, std::llround(control_.writeInterval)) == 0;
+    } else if (stepCount_ > 0 && (control_.writeControl == io::ControlDict::WriteControl::RunTime ||
+                                  control_.writeControl == io::ControlDict::WriteControl::AdjustableRunTime)) {
+        auto index = [&](int step) {
+            return static_cast<long long>((step + 0.5) * control_.deltaT / control_.writeInterval);
+        };
+        lastIsWritten = index(stepCount_) > std::max<long long>(0, index(stepCount_ - 1));
+    }
+    if (!lastIsWritten) {
+        err_ << "rbmMoveMesh: warning: the last time " << general(reached)
+             << " is not a write time (writeControl, writeInterval): its mesh will not be written\n";
+    }
+}
+
+// ---- Time names and write times ---------------------------------------------------------------
+
+std::string MoveMeshRun::timeNameOf(double time)
+{
+    const int precision = io::adjustedTimePrecision(time, control_.deltaT, control_.timeFormat, timePrecision_);
+    if (precision > timePrecision_) {
+        // OpenFOAM's Time does the same, with the same message.
+        err_ << "rbmMoveMesh: Increased the timePrecision from " << timePrecision_ << " to " << precision
+             << " to distinguish between timeNames at time " << general(time, 17) << "\n";
+        timePrecision_ = precision;
+    }
+    return io::timeName(time, control_.timeFormat, timePrecision_);
+}
+
+bool MoveMeshRun::isWriteTime(int step, double time)
+{
+    // OpenFOAM v1912 Time::operator++: timeStep writes every writeInterval steps; the others
+    // write when the index of the current write interval grows.
+    auto crossed = [&](double elapsed) {
+        const auto index = static_cast<long long>(elapsed / control_.writeInterval);
+        if (index > writeTimeIndex_) {
+            writeTimeIndex_ = index;
+            return true;
+        }
+        return false;
+    };
+    switch (control_.writeControl) {
+    case io::ControlDict::WriteControl::TimeStep: {
+        const long long interval = std::max<long long>(1, std::llround(control_.writeInterval));
+        return step % interval == 0;
+    }
+    case io::ControlDict::WriteControl::RunTime:
+    case io::ControlDict::WriteControl::AdjustableRunTime:
+        // The time step is fixed here (no adjustTimeStep), so adjustableRunTime writes as
+        // runTime does: label(((t − startTime) + 0.5 deltaT)/writeInterval) grows.
+        return crossed((time - startTime_) + 0.5 * control_.deltaT);
+    case io::ControlDict::WriteControl::CpuTime:
+        return crossed(cpuSeconds() - cpuStart_);
+    case io::ControlDict::WriteControl::ClockTime:
+        return crossed(std::chrono::duration<double>(Clock::now().time_since_epoch()).count() - clockStart_);
+    }
+    return false;
+}
+
+// ---- Writing ----------------------------------------------------------------------------------
+
+void MoveMeshRun::writeTime(const std::string& timeName, const std::vector<Vector3>& points)
+{
+    io::TimeFolderWriter folder(caseDirectory_, timeName);
+
+    io::FoamWriteOptions pointOptions;
+    pointOptions.binary = control_.binary;
+    pointOptions.precision = control_.writePrecision;
+    pointOptions.compressed = control_.writeCompression;
+    fs::create_directories(folder.staging() / "polyMesh");
+    io::writePointsFile(folder.staging() / "polyMesh" / "points", points, timeName + "/polyMesh", pointOptions);
+
+    // pointDisplacement: the input's boundary conditions (so OpenFOAM reads the same case),
+    // with the current values of the prescribed patches (and of any patch that had a value).
+    const std::vector<Vector3>& displacement = solver_->pointDisplacement();
+    std::vector<io::PointPatchFieldEntry> boundaryField = boundaryField_.boundaryField;
+    std::vector<Vector3> patchValues;
+    for (std::size_t p = 0; p < boundaryField.size(); ++p) {
+        io::PointPatchFieldEntry& entry = boundaryField[p];
+        if (entry.type == "empty" || entry.type == "wedge") continue;
+        if (!prescribedPatches_[p] && !entry.dictionary.contains("value")) continue;
+        const std::vector<Label> labels = io::patchPointLabels(mesh_, static_cast<Label>(p));
+        patchValues.resize(labels.size());
+        for (std::size_t i = 0; i < labels.size(); ++i) patchValues[i] = displacement[static_cast<std::size_t>(labels[i])];
+        entry.dictionary.set(io::vectorFieldEntry("value", patchValues));
+    }
+    io::PointVectorFieldWriteOptions fieldOptions;
+    fieldOptions.dimensions = boundaryField_.dimensions;
+    fieldOptions.precision = std::max(control_.writePrecision, 10);   // as the points: thin cells need the digits
+    fieldOptions.compressed = control_.writeCompression;
+    fieldOptions.location = timeName;
+    io::writePointVectorField(folder.staging() / "pointDisplacement", displacement, boundaryField, fieldOptions);
+
+    folder.commit();
+}
+
+void MoveMeshRun::writeVtk(double time, const std::string& timeName, const std::vector<Vector3>& points)
+{
+    // evaluator_'s geometry is that of `points` (evaluated just before).
+    const MeshGeometry& geometry = evaluator_->geometry();
+    const std::size_t cellCount = geometry.cellVolumes.size();
+    const Label internalFaces = mesh_.internalFaceCount();
+
+    io::VtkField nonOrthogonality{"nonOrthogonality", 1, std::vector<double>(cellCount, 0.0)};
+    io::VtkField skewness{"skewness", 1, std::vector<double>(cellCount, 0.0)};
+    io::VtkField volume{"volume", 1, geometry.cellVolumes};
+    io::VtkField quality{"quality", 1, std::vector<double>(cellCount, std::numeric_limits<double>::quiet_NaN())};
+    io::VtkField inverted{"inverted", 1, std::vector<double>(cellCount, 0.0)};
+
+    constexpr double degrees = 180.0 / std::numbers::pi;
+    for (Label f = 0; f < mesh_.faceCount(); ++f) {
+        const Label owner = mesh_.owner[static_cast<std::size_t>(f)];
+        const Vector3& faceCentre = geometry.faceCentres[static_cast<std::size_t>(f)];
+        const Vector3& faceArea = geometry.faceAreas[static_cast<std::size_t>(f)];
+        const Vector3& ownerCentre = geometry.cellCentres[static_cast<std::size_t>(owner)];
+        if (f < internalFaces) {
+            const Label neighbour = mesh_.neighbour[static_cast<std::size_t>(f)];
+            const Vector3& neighbourCentre = geometry.cellCentres[static_cast<std::size_t>(neighbour)];
+            const double cosine = faceNonOrthogonalityCosine(ownerCentre, neighbourCentre, faceArea);
+            const double angle = std::acos(std::clamp(cosine, -1.0, 1.0)) * degrees;
+            const double skew = faceSkewness(mesh_.face(f), points, faceCentre, faceArea, ownerCentre, neighbourCentre);
+            for (const Label cell : {owner, neighbour}) {
+                auto& n = nonOrthogonality.values[static_cast<std::size_t>(cell)];
+                auto& s = skewness.values[static_cast<std::size_t>(cell)];
+                n = std::max(n, angle);
+                s = std::max(s, skew);
+            }
+        } else {
+            auto& s = skewness.values[static_cast<std::size_t>(owner)];
+            s = std::max(s, boundaryFaceSkewness(mesh_.face(f), points, faceCentre, faceArea, ownerCentre));
+        }
+    }
+
+    if (cells_->twoD) {
+        // 2D: the thesis' q (triangles) and F_shape (quadrilaterals) on the front plane, and
+        // inverted = signed area <= 0, as the 2D quality report counts them.
+        const PseudoTwoDMesh& twoD = *cells_->twoD;
+        cells_->nodePositions.resize(static_cast<std::size_t>(twoD.nodeCount()));
+        for (Label n = 0; n < twoD.nodeCount(); ++n) {
+            cells_->nodePositions[static_cast<std::size_t>(n)] =
+                twoD.frame.toLocal(points[static_cast<std::size_t>(twoD.frontPointOfNode[static_cast<std::size_t>(n)])]);
+        }
+        const auto& nodes = cells_->nodePositions;
+        for (Label c = 0; c < twoD.planar.cellCount(); ++c) {
+            const auto polygon = twoD.planar.cell(c);
+            double& q = quality.values[static_cast<std::size_t>(c)];
+            if (polygon.size() == 3) {
+                q = triangleMeanRatio(nodes[polygon[0]], nodes[polygon[1]], nodes[polygon[2]]);
+            } else if (polygon.size() == 4) {
+                q = quadrilateralShape(nodes[polygon[0]], nodes[polygon[1]], nodes[polygon[2]], nodes[polygon[3]]);
+            }
+            inverted.values[static_cast<std::size_t>(c)] = twoD.planar.signedArea(c, nodes) <= 0.0 ? 1.0 : 0.0;
+        }
+    } else {
+        for (std::size_t c = 0; c < cellCount; ++c) {
+            const PyramidQuality pyramids = cellPyramidQuality(mesh_, cells_->topology, geometry, static_cast<Label>(c));
+            quality.values[c] = pyramids.ratio;
+            inverted.values[c] = pyramids.inverted ? 1.0 : 0.0;
+        }
+    }
+
+    const std::vector<Vector3>& displacement = solver_->pointDisplacement();
+    io::VtkField displacementField{"pointDisplacement", 3, std::vector<double>(3 * displacement.size())};
+    for (std::size_t i = 0; i < displacement.size(); ++i) {
+        displacementField.values[3 * i] = displacement[i].x;
+        displacementField.values[3 * i + 1] = displacement[i].y;
+        displacementField.values[3 * i + 2] = displacement[i].z;
+    }
+    io::VtkField nodeClass{"nodeClass", 1, std::vector<double>(nodeClasses_.begin(), nodeClasses_.end())};
+
+    const std::string dataset = caseName_ + "_" + timeName + ".vtu";
+    const fs::path folder = caseDirectory_ / "VTK";
+    fs::create_directories(folder);
+    io::writeVtu(folder / dataset, points, *cells_->vtkCells, {displacementField, nodeClass},
+                 {nonOrthogonality, skewness, volume, quality, inverted});
+    pvd_->add(time, dataset);
+    pvd_->write();
+}
+
+double MoveMeshRun::worstCellQuality(const QualityReport& report) const
+{
+    if (report.thesis.dimension == 2) {
+        double worst = std::numeric_limits<double>::quiet_NaN();
+        if (report.thesis.triangleMeanRatio.count > 0) worst = report.thesis.triangleMeanRatio.min;
+        if (report.thesis.quadrilateralShape.count > 0) {
+            worst = std::isnan(worst) ? report.thesis.quadrilateralShape.min
+                                      : std::min(worst, report.thesis.quadrilateralShape.min);
+        }
+        return worst;
+    }
+    const MeshGeometry& geometry = evaluator_->geometry();
+    double worst = std::numeric_limits<double>::quiet_NaN();
+    const Label cellCount = static_cast<Label>(geometry.cellVolumes.size());
+    for (Label c = 0; c < cellCount; ++c) {
+        const double ratio = cellPyramidQuality(mesh_, cells_->topology, geometry, c).ratio;
+        worst = (c == 0) ? ratio : std::min(worst, ratio);
+    }
+    return worst;
+}
+
+// ---- The loop -------------------------------------------------------------------------------
+
+int MoveMeshRun::run()
+{
+    const Clock::time_point runStart = Clock::now();
+    cpuStart_ = cpuSeconds();
+    clockStart_ = std::chrono::duration<double>(Clock::now().time_since_epoch()).count();
+    writeTimeIndex_ = 0;
+
+    for (const std::string& name : io::removeStaleStagingFolders(caseDirectory_)) {
+        err_ << "rbmMoveMesh: removed " << name << ", the unfinished time folder of an interrupted run\n";
+    }
+    printHeader();
+    io::JsonLinesWriter jsonLog(jsonLogFile(), true);
+
+    // The initial mesh: quality, and the first entry of the VTK series.
+    std::vector<Vector3> points = solver_->curPoints();
+    {
+        const QualityReport initial = evaluator_->evaluate(points);
+        out_ << "Initial mesh (time " << startTimeName_ << "): worst quality "
+             << fixed(worstCellQuality(initial), 4) << ", max non-orthogonality "
+             << fixed(initial.checkMesh.maxNonOrthogonality, 2) << ", max skewness "
+             << fixed(initial.checkMesh.maxSkewness, 3) << ", inverted " << initial.invertedCellCount() << "\n\n";
+        if (initial.invertedCellCount() > 0) {
+            err_ << "rbmMoveMesh: warning: the initial mesh already has " << initial.invertedCellCount()
+                 << " inverted cells\n";
+        }
+        if (options_.writeVtk) writeVtk(startTime_, startTimeName_, points);
+    }
+    out_.flush();
+
+    int exitStatus = exitSuccess;
+    int stepsRun = 0;
+    for (int step = 1; step <= stepCount_; ++step) {
+        const Clock::time_point stepStart = Clock::now();
+        const double time = stepTime(step);
+        std::string name;
+        try {
+            name = timeNameOf(time);
+            solver_->updateBoundaryConditions(time);
+            const motion::MotionSolveReport solve = solver_->solve();
+            points = solver_->curPoints();
+            const QualityReport quality = evaluator_->evaluate(points);
+
+            io::StepLogRecord record;
+            record.step = step;
+            record.time = time;
+            record.timeName = name;
+            record.subSteps = solve.subStepCount;
+            record.iterations = solve.iterations;
+            record.residual = solve.residual;
+            record.energy = solve.energy;
+            record.converged = solve.converged;
+            record.reason = solve.reason;
+            record.worstQuality = worstCellQuality(quality);
+            record.maxNonOrthogonality = quality.checkMesh.maxNonOrthogonality;
+            record.maxSkewness = quality.checkMesh.maxSkewness;
+            record.invertedCells = quality.invertedCellCount();
+            const bool valid = solve.converged && record.invertedCells == 0;
+
+            const bool scheduled = isWriteTime(step, time);   // called every step: it keeps state
+            if (valid ? scheduled : options_.writeInvalid) {
+                if (!valid) {
+                    err_ << "\n*** WARNING (-writeInvalid): writing time " << name << " although "
+                         << (record.invertedCells > 0 ? std::to_string(record.invertedCells) + " cells are inverted"
+                                                      : std::string("the solve did not converge (") + solve.reason + ")")
+                         << ": this mesh is NOT valid for a flow solver ***\n\n";
+                }
+                writeTime(name, points);
+                if (options_.writeVtk) writeVtk(time, name, points);
+                record.written = true;
+            }
+            record.wallSeconds = secondsSince(stepStart);
+
+            out_ << io::formatStepLogLine(record, timeNameWidth_) << '\n';
+            out_.flush();
+            jsonLog.append(io::stepLogJson(record));
+            ++stepsRun;
+
+            Extremes& e = extremes_;
+            if (std::isfinite(record.worstQuality) && (!e.haveQuality || record.worstQuality < e.worstQuality)) {
+                e.worstQuality = record.worstQuality;
+                e.worstQualityTime = time;
+                e.haveQuality = true;
+            }
+            if (step == 1 || record.maxNonOrthogonality > e.maxNonOrthogonality) {
+                e.maxNonOrthogonality = record.maxNonOrthogonality;
+                e.maxNonOrthogonalityTime = time;
+            }
+            if (step == 1 || record.maxSkewness > e.maxSkewness) {
+                e.maxSkewness = record.maxSkewness;
+                e.maxSkewnessTime = time;
+            }
+            e.maxInvertedCells = std::max(e.maxInvertedCells, record.invertedCells);
+            e.maxIterations = std::max(e.maxIterations, record.iterations);
+            e.totalIterations += record.iterations;
+            if (std::isfinite(record.residual)) e.maxResidual = std::max(e.maxResidual, record.residual);
+            if (record.written) {
+                ++e.writtenTimes;
+                e.lastWritten = name;
+            }
+
+            if (observer_) observer_(StepObservation{record, *solver_, points, valid});
+
+            if (!valid) {
+                ++e.invalidSteps;
+                exitStatus = exitRunFailed;
+                if (!options_.writeInvalid) {
+                    err_ << "rbmMoveMesh: time " << name << ": ";
+                    if (record.invertedCells > 0) {
+                        err_ << "the moved mesh has " << record.invertedCells << " inverted cell"
+                             << (record.invertedCells == 1 ? "" : "s");
+                        if (!solve.converged) err_ << " and the solve did not converge (" << solve.reason << ")";
+                    } else {
+                        err_ << "the motion solver did not converge (" << solve.reason << ")";
+                    }
+                    err_ << ".\nNothing was written for time " << name
+                         << "; earlier times stay as written. More sub-steps (subSteps in "
+                            "rigidBodyMotionSolverCoeffs) or the nonlinear formulation may help; -writeInvalid "
+                            "writes the step anyway to look at it.\n";
+                    break;
+                }
+            }
+        } catch (const InputError& error) {
+            err_ << "rbmMoveMesh: time " << (name.empty() ? general(time) : name) << ": " << error.what()
+                 << "\nNothing was written for this time; earlier times stay as written.\n";
+            exitStatus = exitBadInput;
+            break;
+        } catch (const std::exception& error) {
+            err_ << "rbmMoveMesh: time " << (name.empty() ? general(time) : name) << ": " << error.what()
+                 << "\nNothing was written for this time; earlier times stay as written.\n";
+            exitStatus = exitRunFailed;
+            break;
+        }
+    }
+    printSummary(stepsRun, secondsSince(runStart));
+    return exitStatus;
+}
+
+void MoveMeshRun::printSummary(int stepsRun, double wallSeconds) const
+{
+    const Extremes& e = extremes_;
+    out_ << "\nEnd: " << stepsRun << " of " << stepCount_ << (stepCount_ == 1 ? " step" : " steps") << " in "
+         << fixed(wallSeconds, 2) << " s";
+    if (stepsRun > 0) out_ << " (" << fixed(wallSeconds / stepsRun, 3) << " s per step)";
+    out_ << ", " << e.writtenTimes << (e.writtenTimes == 1 ? " time" : " times") << " written";
+    if (!e.lastWritten.empty()) out_ << " (last " << e.lastWritten << ")";
+    out_ << "\n";
+    if (stepsRun > 0) {
+        out_ << "  worst quality          " << (e.haveQuality ? fixed(e.worstQuality, 4) : std::string("n/a"));
+        if (e.haveQuality) out_ << "  at time " << general(e.worstQualityTime);
+        out_ << "\n  max non-orthogonality  " << fixed(e.maxNonOrthogonality, 2) << "  at time "
+             << general(e.maxNonOrthogonalityTime) << "\n  max skewness           " << fixed(e.maxSkewness, 3)
+             << "  at time " << general(e.maxSkewnessTime) << "\n  inverted cells         " << e.maxInvertedCells
+             << " (most in one step; " << e.invalidSteps << " invalid step" << (e.invalidSteps == 1 ? "" : "s")
+             << ")\n  iterations             " << e.totalIterations << " in total, at most " << e.maxIterations
+             << " in one step; largest final residual " << general(e.maxResidual, 3) << "\n";
+    }
+    out_.flush();
+}
+
+// ---- Program --------------------------------------------------------------------------------
+
+int runMoveMesh(const MoveMeshOptions& options, std::ostream& out, std::ostream& err,
+                std::function<void(const StepObservation&)> observer)
+{
+    std::unique_ptr<MoveMeshRun> run;
+    try {
+        run = std::make_unique<MoveMeshRun>(options, out, err);
+    } catch (const InputError& error) {
+        err << "rbmMoveMesh: " << error.what() << "\nNothing was written.\n";
+        return exitBadInput;
+    } catch (const std::invalid_argument& error) {
+        // The solver's checks of the problem it was given (boundary conditions, mesh).
+        err << "rbmMoveMesh: " << error.what() << "\nNothing was written.\n";
+        return exitBadInput;
+    } catch (const std::exception& error) {
+        err << "rbmMoveMesh: " << error.what() << "\nNothing was written.\n";
+        return exitRunFailed;
+    } catch (...) {
+        err << "rbmMoveMesh: unknown error while reading the case\nNothing was written.\n";
+        return exitRunFailed;
+    }
+    try {
+        if (observer) run->setStepObserver(std::move(observer));
+        return run->run();
+    } catch (const InputError& error) {
+        err << "rbmMoveMesh: " << error.what() << '\n';
+        return exitBadInput;
+    } catch (const std::exception& error) {
+        err << "rbmMoveMesh: " << error.what() << '\n';
+        return exitRunFailed;
+    } catch (...) {
+        err << "rbmMoveMesh: unknown error\n";
+        return exitRunFailed;
+    }
+}
+
+int moveMeshMain(int argc, char** argv, std::ostream& out, std::ostream& err)
+{
+    try {
+        const CommandLine commandLine = parseCommandLine(argc, argv);
+        if (commandLine.help) {
+            out << usageText();
+            return exitSuccess;
+        }
+        if (commandLine.version) {
+            out << versionText() << '\n';
+            return exitSuccess;
+        }
+
+        // PETSc sees only its own options (PetscInitialize keeps pointers to them: they live
+        // as long as the session).
+        std::vector<std::string> petscStorage;
+        petscStorage.emplace_back(argc > 0 ? argv[0] : "rbmMoveMesh");
+        petscStorage.insert(petscStorage.end(), commandLine.petscArguments.begin(), commandLine.petscArguments.end());
+        std::vector<char*> petscPointers;
+        for (std::string& argument : petscStorage) petscPointers.push_back(argument.data());
+        petscPointers.push_back(nullptr);
+        int petscArgc = static_cast<int>(petscStorage.size());
+        char** petscArgv = petscPointers.data();
+        motion::PetscSession session(&petscArgc, &petscArgv);
+
+        int size = 1;
+        int rank = 0;
+        MPI_Comm_size(PETSC_COMM_WORLD, &size);
+        MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+        if (size > 1) {
+            if (rank == 0) {
+                err << "rbmMoveMesh: started on " << size
+                    << " MPI ranks, but parallel runs are not supported yet (the coupled solve is not "
+                       "distributed over ranks). Run rbmMoveMesh on one process.\n";
+            }
+            return exitBadInput;
+        }
+        return runMoveMesh(commandLine.options, out, err);
+    } catch (const UsageError& error) {
+        err << "rbmMoveMesh: " << error.what() << "\n\n" << usageText();
+        return exitBadInput;
+    } catch (const std::exception& error) {
+        err << "rbmMoveMesh: " << error.what() << '\n';
+        return exitRunFailed;
+    } catch (...) {
+        err << "rbmMoveMesh: unknown error\n";
+        return exitRunFailed;
+    }
+}
+
+} // namespace rbm::app

@@ -1,0 +1,200 @@
+#pragma once
+// rbmMoveMesh's time loop, outside main so that tests can run it: OpenFOAM's moveMesh with
+// rbm's motion solver (DESIGN.md §3).
+//
+// The run (documented for users in docs/rbmMoveMesh.md):
+//  1. Setup reads and checks every input before anything is written: system/controlDict,
+//     constant/dynamicMeshDict, constant/polyMesh, the point displacement field with the
+//     boundary conditions, and for a restart the warm start. Bad input is an rbm::InputError
+//     and leaves the case folder exactly as it was.
+//  2. Steps k = 1..N at t_k = startTime + k deltaT (computed, not accumulated, so a period's
+//     end lands exactly on its time), N = the largest k with t_k <= endTime + 1e-9 deltaT (or a few
+//     ulps of the times when they are large against deltaT).
+//     Each step: updateBoundaryConditions(t_k), solve() for the total displacement against
+//     points0 = constant/polyMesh/points (warm-started from the previous step), quality of
+//     curPoints(), one log line and one JSON line.
+//  3. At write times (controlDict writeControl) the step is written atomically:
+//     <time>/polyMesh/points, <time>/pointDisplacement and, unless -noVTK,
+//     VTK/<caseName>_<time>.vtu with VTK/<caseName>.pvd. The initial mesh goes to VTK too.
+//  4. A step with inverted cells or a solve that did not converge stops the run with exit
+//     status 1 and writes nothing for that step; with -writeInvalid it is written anyway
+//     (whatever the write schedule) with a loud warning, the run goes on, and the exit
+//     status is still 1.
+//
+// Restart (startFrom latestTime, or a startTime whose folder an earlier run wrote): the
+// boundary conditions are those of the earliest time folder up to the start time that has
+// a pointDisplacement (normally 0/pointDisplacement: the conditions are functions of the
+// absolute time, given once); the start folder's own pointDisplacement, when it is another
+// file, only warm-starts the solver (its internalField is the total displacement of that
+// time). The start folder's polyMesh/points are not read: the mesh at any time is
+// points0 + pointDisplacement.
+
+#include "ControlDict.hpp"
+#include "MotionSolver.hpp"
+#include "PointVectorField.hpp"
+#include "PolyMesh.hpp"
+#include "QualityReport.hpp"
+#include "RunLog.hpp"
+#include "VtkWriter.hpp"
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <iosfwd>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace rbm::app {
+
+// Exit statuses of rbmMoveMesh.
+inline constexpr int exitSuccess = 0;
+inline constexpr int exitRunFailed = 1;   // inverted cells, no convergence, a failure during the run
+inline constexpr int exitBadInput = 2;    // bad command line or case (nothing written)
+
+struct MoveMeshOptions {
+    std::filesystem::path caseDirectory = ".";
+    bool writeVtk = true;        // -noVTK turns it off
+    bool writeInvalid = false;   // -writeInvalid
+    bool parallel = false;       // -parallel
+};
+
+// A command-line problem: printed with the usage, exit status 2.
+class UsageError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+struct CommandLine {
+    MoveMeshOptions options;
+    bool help = false;
+    bool version = false;
+    // PETSc's options with their values, in order (handed to PetscInitialize).
+    std::vector<std::string> petscArguments;
+};
+
+// rbmMoveMesh's own options may come anywhere; every other option must be PETSc's, which
+// is recognised by an underscore in its name (-ksp_type, -rbm_pc_type, -log_view) or by
+// name (-info, -malloc, -malloc_debug, -nox, -options_file ...): it is passed on together
+// with the arguments that follow it up to the next option (its value). Anything else
+// (an unknown option such as -noVtk, a stray word) is a UsageError.
+CommandLine parseCommandLine(int argc, const char* const* argv);
+
+// The text of -help: options, files, dictionary keywords, log format, exit statuses.
+std::string usageText();
+// "rbmMoveMesh <version> (PETSc <version>)".
+std::string versionText();
+
+// One time step, as a test or a host sees it after the step (written or not).
+struct StepObservation {
+    const io::StepLogRecord& record;
+    const motion::MotionSolver& solver;
+    const std::vector<Vector3>& points;   // curPoints() of the step
+    bool valid = true;
+};
+
+class MoveMeshRun {
+public:
+    // Setup (step 1 above): reads and checks everything, writes nothing. Throws
+    // rbm::InputError (or std::invalid_argument from the solver's checks) for bad input.
+    // `out` receives the header and the log lines, `err` warnings and errors.
+    MoveMeshRun(MoveMeshOptions options, std::ostream& out, std::ostream& err);
+    ~MoveMeshRun();
+    MoveMeshRun(const MoveMeshRun&) = delete;
+    MoveMeshRun& operator=(const MoveMeshRun&) = delete;
+
+    // Called after every step, before the run may stop.
+    void setStepObserver(std::function<void(const StepObservation&)> observer) { observer_ = std::move(observer); }
+
+    // Steps 2-4: returns exitSuccess or exitRunFailed. Exceptions during the run (an
+    // InputError found late, a PETSc failure) propagate; runMoveMesh turns them into
+    // exit statuses.
+    int run();
+
+    double startTime() const { return startTime_; }
+    int stepCount() const { return stepCount_; }
+    double stepTime(int step) const { return startTime_ + step * control_.deltaT; }
+    const io::ControlDict& controlDict() const { return control_; }
+    const PolyMesh& mesh() const { return mesh_; }
+    const motion::MotionSolver& solver() const { return *solver_; }
+    std::string caseName() const { return caseName_; }
+    // postProcessing/rbmMoveMesh/<startTime>/log.jsonl
+    std::filesystem::path jsonLogFile() const;
+
+private:
+    struct CellFieldWorkspace;
+
+    void printHeader() const;
+    bool isWriteTime(int step, double time);
+    std::string timeNameOf(double time);
+    void writeTime(const std::string& timeName, const std::vector<Vector3>& points);
+    void writeVtk(double time, const std::string& timeName, const std::vector<Vector3>& points);
+    double worstCellQuality(const QualityReport& report) const;
+    void computeNodeClasses();
+    void printSummary(int stepsRun, double wallSeconds) const;
+
+    MoveMeshOptions options_;
+    std::ostream& out_;
+    std::ostream& err_;
+    std::filesystem::path caseDirectory_;
+    std::string caseName_;
+    io::ControlDict control_;
+    double startTime_ = 0.0;
+    std::string startTimeName_;
+    int stepCount_ = 0;
+    double endTolerance_ = 1e-9;   // in steps
+    int timePrecision_ = 6;
+    int timeNameWidth_ = 8;
+    std::filesystem::path boundaryFieldFile_;
+    std::optional<std::filesystem::path> warmStartFile_;
+
+    PolyMesh mesh_;
+    io::Dictionary dynamicMeshDict_;
+    io::Dictionary pointDisplacementDictionary_;
+    io::PointVectorField boundaryField_;
+    std::unique_ptr<motion::MotionSolver> solver_;
+    std::vector<std::uint8_t> nodeClasses_;   // per point: 0 free, 1 sliding, 2 prescribed
+    std::vector<std::uint8_t> prescribedPatches_;   // per patch: 1 when its condition is prescribed
+
+    std::unique_ptr<QualityEvaluator> evaluator_;
+    std::unique_ptr<CellFieldWorkspace> cells_;
+    std::unique_ptr<io::PvdCollection> pvd_;
+
+    // Write schedule state (OpenFOAM's Time::writeTimeIndex_ for runTime/cpuTime/clockTime).
+    long long writeTimeIndex_ = 0;
+    double cpuStart_ = 0.0;
+    double clockStart_ = 0.0;
+
+    std::function<void(const StepObservation&)> observer_;
+
+    // Worst values over the run, for the summary.
+    struct Extremes {
+        double worstQuality = 0.0;
+        double worstQualityTime = 0.0;
+        bool haveQuality = false;
+        double maxNonOrthogonality = 0.0;
+        double maxNonOrthogonalityTime = 0.0;
+        double maxSkewness = 0.0;
+        double maxSkewnessTime = 0.0;
+        long long maxInvertedCells = 0;
+        int invalidSteps = 0;
+        int maxIterations = 0;
+        long long totalIterations = 0;
+        double maxResidual = 0.0;
+        int writtenTimes = 0;
+        std::string lastWritten;
+    } extremes_;
+};
+
+// Setup and run with every exception turned into an exit status and a message on `err`
+// (InputError and usage problems: 2; failures during the run: 1). Never throws.
+int runMoveMesh(const MoveMeshOptions& options, std::ostream& out, std::ostream& err,
+                std::function<void(const StepObservation&)> observer = {});
+
+// The whole program: command line, PETSc session (with the PETSc options), -help,
+// -version, the parallel check, runMoveMesh. Never throws.
+int moveMeshMain(int argc, char** argv, std::ostream& out, std::ostream& err);
+
+} // namespace rbm::app

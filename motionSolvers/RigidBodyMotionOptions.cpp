@@ -1,0 +1,245 @@
+#include "RigidBodyMotionOptions.hpp"
+
+#include "InputError.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace rbm::motion {
+
+namespace {
+
+std::string joined(const std::vector<std::string_view>& words)
+{
+    std::string text;
+    for (std::string_view word : words) {
+        if (!text.empty()) text += ' ';
+        text += word;
+    }
+    return text;
+}
+
+[[noreturn]] void failAt(const io::Entry& entry, const std::string& message)
+{
+    throw InputError(entry.file(), entry.line(), message);
+}
+
+// A single word value, one of `valid`.
+std::string readChoice(const io::Entry& entry, const std::vector<std::string_view>& valid)
+{
+    if (entry.isDictionary()) failAt(entry, "'" + entry.keyword() + "' must be one of: " + joined(valid));
+    io::TokenStream stream = entry.stream();
+    if (stream.atEnd()) failAt(entry, "'" + entry.keyword() + "' has no value; valid values are: " + joined(valid));
+    const io::Token& token = stream.next();
+    const std::string value = token.text;
+    if ((token.kind != io::Token::Kind::Word && token.kind != io::Token::Kind::String) ||
+        std::find(valid.begin(), valid.end(), value) == valid.end())
+        failAt(entry, "invalid value '" + value + "' for '" + entry.keyword() + "'; valid values are: " + joined(valid));
+    if (!stream.atEnd())
+        failAt(entry, "unexpected '" + stream.peek().text + "' after the value of '" + entry.keyword() + "'");
+    return value;
+}
+
+double readPositiveScalar(const io::Entry& entry)
+{
+    if (entry.isDictionary()) failAt(entry, "'" + entry.keyword() + "' must be a positive number");
+    io::TokenStream stream = entry.stream();
+    const double value = stream.readScalar();
+    if (!stream.atEnd())
+        failAt(entry, "unexpected '" + stream.peek().text + "' after the value of '" + entry.keyword() + "'");
+    if (!(value > 0.0) || !std::isfinite(value))
+        failAt(entry, "'" + entry.keyword() + "' must be a positive number, got " + entry.valueText());
+    return value;
+}
+
+int readCount(const io::Entry& entry, int minimum)
+{
+    if (entry.isDictionary()) failAt(entry, "'" + entry.keyword() + "' must be an integer");
+    io::TokenStream stream = entry.stream();
+    const Label value = stream.readLabel();
+    if (!stream.atEnd())
+        failAt(entry, "unexpected '" + stream.peek().text + "' after the value of '" + entry.keyword() + "'");
+    if (value < minimum)
+        failAt(entry, "'" + entry.keyword() + "' must be at least " + std::to_string(minimum) + ", got " +
+                          std::to_string(value));
+    return value;
+}
+
+StiffeningOptions readStiffening(const io::Entry& entry)
+{
+    // OpenFOAM's diffusivity syntax (motionDiffusivity::New): [quadratic] inverseDistance (patches).
+    const std::string valid = "none; inverseDistance (patch ...); quadratic inverseDistance (patch ...)";
+    if (entry.isDictionary()) failAt(entry, "'stiffening' must be one of: " + valid);
+    io::TokenStream stream = entry.stream();
+    if (stream.atEnd()) failAt(entry, "'stiffening' has no value; valid forms are: " + valid);
+    StiffeningOptions stiffening;
+    stiffening.line = entry.line();
+    std::string word = stream.readWord();
+    if (word == "none" || word == "uniform") {
+        if (!stream.atEnd()) failAt(entry, "unexpected '" + stream.peek().text + "' after 'stiffening " + word + "'");
+        return stiffening;
+    }
+    stiffening.exponent = 1;
+    if (word == "quadratic") {
+        stiffening.exponent = 2;
+        if (stream.atEnd()) failAt(entry, "'stiffening quadratic' needs a diffusivity; valid forms are: " + valid);
+        word = stream.readWord();
+    }
+    if (word != "inverseDistance")
+        failAt(entry, "invalid stiffening '" + word + "'; valid forms are: " + valid);
+    if (stream.atEnd()) failAt(entry, "'stiffening " + word + "' needs a list of patches, e.g. (airfoil)");
+    stiffening.patches = stream.readWordList();
+    if (stiffening.patches.empty()) failAt(entry, "'stiffening' lists no patch");
+    if (!stream.atEnd()) failAt(entry, "unexpected '" + stream.peek().text + "' after the patch list of 'stiffening'");
+    return stiffening;
+}
+
+} // namespace
+
+std::string_view couplingName(RbmCoupling coupling)
+{
+    return coupling == RbmCoupling::coupled ? "coupled" : "decoupled";
+}
+
+std::string_view formulationName(RbmFormulation formulation)
+{
+    return formulation == RbmFormulation::nonlinear ? "nonlinear" : "linearized";
+}
+
+std::string_view algorithmName(RbmAlgorithm algorithm)
+{
+    return algorithm == RbmAlgorithm::newton ? "newton" : "localGlobal";
+}
+
+std::string_view linearSolverName(LinearSolverKind kind)
+{
+    switch (kind) {
+    case LinearSolverKind::automatic: return "automatic";
+    case LinearSolverKind::direct: return "direct";
+    case LinearSolverKind::iterative: return "iterative";
+    }
+    return "?";
+}
+
+std::vector<std::pair<std::string, std::string>> parsePetscOptionString(std::string_view text)
+{
+    std::vector<std::string> words;
+    std::istringstream stream{std::string(text)};
+    for (std::string word; stream >> word;) words.push_back(word);
+    auto isName = [](const std::string& word) {
+        return word.size() >= 2 && word[0] == '-' && std::isalpha(static_cast<unsigned char>(word[1]));
+    };
+    std::vector<std::pair<std::string, std::string>> options;
+    for (const std::string& word : words) {
+        if (isName(word)) {
+            options.emplace_back(word, "");
+        } else if (options.empty()) {
+            throw std::invalid_argument("expected an option name such as -ksp_type, found '" + word + "'");
+        } else {
+            std::string& value = options.back().second;
+            value += (value.empty() ? "" : " ") + word;
+        }
+    }
+    return options;
+}
+
+const std::vector<std::string_view>& RigidBodyMotionOptions::keywords()
+{
+    static const std::vector<std::string_view> words{
+        "coupling",  "formulation",   "algorithm",         "weighting",     "subSteps",
+        "maxSubStepSplits", "maxSubSteps", "tolerance", "relativeTolerance", "maxIterations",
+        "linearSolver", "petscOptions", "stiffening"};
+    return words;
+}
+
+std::string RigidBodyMotionOptions::describe() const
+{
+    std::ostringstream text;
+    text << couplingName(coupling) << ' ' << formulationName(formulation);
+    if (coupling == RbmCoupling::coupled && formulation == RbmFormulation::nonlinear)
+        text << " (" << algorithmName(algorithm) << ')';
+    text << ", weighting " << edgeWeightingName(weighting) << ", subSteps ";
+    if (subSteps == 0) text << "auto";
+    else text << subSteps;
+    if (stiffening.exponent > 0) {
+        text << ", stiffening " << (stiffening.exponent == 2 ? "quadratic " : "") << "inverseDistance (";
+        for (std::size_t k = 0; k < stiffening.patches.size(); ++k) text << (k ? " " : "") << stiffening.patches[k];
+        text << ')';
+    }
+    return text.str();
+}
+
+RigidBodyMotionOptions RigidBodyMotionOptions::read(const io::Dictionary& coefficients)
+{
+    RigidBodyMotionOptions options;
+    options.file = coefficients.file();
+    const std::vector<std::string_view>& valid = keywords();
+    for (const io::Entry& entry : coefficients.entries()) {
+        const std::string& keyword = entry.keyword();
+        if (std::find(valid.begin(), valid.end(), keyword) == valid.end())
+            failAt(entry, "unknown keyword '" + keyword + "' in " + coefficients.name() +
+                              ". Valid keywords are: " + joined(valid));
+        if (keyword == "coupling") {
+            options.coupling = readChoice(entry, {"coupled", "decoupled"}) == "coupled" ? RbmCoupling::coupled
+                                                                                       : RbmCoupling::decoupled;
+        } else if (keyword == "formulation") {
+            options.formulation = readChoice(entry, {"nonlinear", "linearized"}) == "nonlinear"
+                                      ? RbmFormulation::nonlinear
+                                      : RbmFormulation::linearized;
+        } else if (keyword == "algorithm") {
+            options.algorithm =
+                readChoice(entry, {"newton", "localGlobal"}) == "newton" ? RbmAlgorithm::newton : RbmAlgorithm::localGlobal;
+        } else if (keyword == "weighting") {
+            options.weighting =
+                edgeWeightingFromName(readChoice(entry, {"uniform", "inverseDistance", "inverseDistanceSquared"}));
+        } else if (keyword == "subSteps") {
+            if (entry.isDictionary()) failAt(entry, "'subSteps' must be 'auto' or a positive integer");
+            io::TokenStream stream = entry.stream();
+            if (!stream.atEnd() && stream.peek().kind == io::Token::Kind::Word) {
+                const std::string word = stream.readWord();
+                if (word != "auto")
+                    failAt(entry, "invalid value '" + word + "' for 'subSteps'; valid values are: auto, or a positive integer");
+                if (!stream.atEnd()) failAt(entry, "unexpected '" + stream.peek().text + "' after 'subSteps auto'");
+                options.subSteps = 0;
+            } else {
+                options.subSteps = readCount(entry, 1);
+            }
+        } else if (keyword == "maxSubStepSplits") {
+            options.maxSubStepSplits = readCount(entry, 0);
+        } else if (keyword == "maxSubSteps") {
+            options.maxSubSteps = readCount(entry, 1);
+        } else if (keyword == "tolerance") {
+            options.tolerance = readPositiveScalar(entry);
+        } else if (keyword == "relativeTolerance") {
+            options.relativeTolerance = readPositiveScalar(entry);
+        } else if (keyword == "maxIterations") {
+            options.maxIterations = readCount(entry, 1);
+        } else if (keyword == "linearSolver") {
+            const std::string kind = readChoice(entry, {"automatic", "direct", "iterative"});
+            options.linearSolver = kind == "automatic" ? LinearSolverKind::automatic
+                                   : kind == "direct"  ? LinearSolverKind::direct
+                                                       : LinearSolverKind::iterative;
+        } else if (keyword == "petscOptions") {
+            if (entry.isDictionary()) failAt(entry, "'petscOptions' must be a string, e.g. \"-ksp_type cg\"");
+            io::TokenStream stream = entry.stream();
+            if (stream.atEnd()) failAt(entry, "'petscOptions' has no value");
+            options.petscOptions = stream.readWordOrString();
+            if (!stream.atEnd())
+                failAt(entry, "'petscOptions' must be one quoted string, e.g. petscOptions \"-ksp_type cg -pc_type gamg\";");
+            try {
+                options.petscOptionList = parsePetscOptionString(options.petscOptions);
+            } catch (const std::invalid_argument& error) {
+                failAt(entry, std::string("'petscOptions': ") + error.what());
+            }
+        } else if (keyword == "stiffening") {
+            options.stiffening = readStiffening(entry);
+        }
+    }
+    return options;
+}
+
+} // namespace rbm::motion

@@ -1,0 +1,92 @@
+#pragma once
+// The options of the rigid-body-motion (RBM) motion solver: the `rigidBodyMotionSolverCoeffs`
+// dictionary of constant/dynamicMeshDict. Every entry is optional; the defaults make
+// `motionSolver rigidBodyMotionSolver;` alone the robust choice (coupled nonlinear RBM with
+// Newton's method and 1/|d|² weights, DESIGN.md §1–2).
+//
+//     rigidBodyMotionSolverCoeffs
+//     {
+//         coupling          coupled;              // coupled | decoupled            (thesis §2.3.2 / §2.3.1)
+//         formulation       nonlinear;            // nonlinear | linearized         (thesis §2.3 / §2.4)
+//         algorithm         newton;               // newton | localGlobal  (coupled nonlinear only)
+//         weighting         inverseDistanceSquared; // uniform | inverseDistance | inverseDistanceSquared
+//         subSteps          auto;                 // auto | N ≥ 1                    (thesis §2.6)
+//         maxSubStepSplits  6;                    // auto: halvings of a sub-step that inverts cells
+//         maxSubSteps       100;                  // auto: cap of the thesis' count
+//         tolerance         1e-11;                // nonlinear convergence, relative to the cell size
+//         relativeTolerance 1e-10;                // Newton's gradient reduction; Krylov tolerance
+//         maxIterations     50;                   // nonlinear iterations (per sub-step)
+//         linearSolver      automatic;            // automatic | direct | iterative
+//         petscOptions      "-ksp_type cg -pc_type gamg";
+//         stiffening        quadratic inverseDistance (airfoil);   // or: inverseDistance (a b); none
+//     }
+//
+// Unknown keywords are errors that name the file and line and list the valid keywords (a
+// misspelt keyword must not be ignored silently); bad values list the valid values.
+
+#include "FoamDictionary.hpp"
+#include "PetscSupport.hpp"
+#include "RbmProblem.hpp"
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace rbm::motion {
+
+enum class RbmCoupling { coupled, decoupled };
+enum class RbmFormulation { nonlinear, linearized };
+// How the coupled nonlinear energy is minimised: Newton (SNES, analytic Hessian, started from
+// the linearized solution) or local/global alternation that hands over to Newton when it stalls.
+enum class RbmAlgorithm { newton, localGlobal };
+
+// Stiffening of the edges near chosen patches, OpenFOAM's diffusivity syntax
+// (`inverseDistance (patches)`, `quadratic inverseDistance (patches)`): w_ij is multiplied by
+// (h_min / d)^exponent, d the distance from the edge midpoint to the nearest face of the
+// patches in the reference mesh, clipped below at h_min, the shortest edge of the mesh.
+struct StiffeningOptions {
+    int exponent = 0;                  // 0: none; 1: inverseDistance; 2: quadratic inverseDistance
+    std::vector<std::string> patches;  // patch names (or groups) as written
+    int line = 0;                      // of the entry, for errors about the patch names
+};
+
+struct RigidBodyMotionOptions {
+    RbmCoupling coupling = RbmCoupling::coupled;
+    RbmFormulation formulation = RbmFormulation::nonlinear;
+    RbmAlgorithm algorithm = RbmAlgorithm::newton;
+    EdgeWeighting weighting = EdgeWeighting::inverseDistanceSquared;
+    int subSteps = 0;                  // 0: automatic
+    int maxSubStepSplits = 6;
+    int maxSubSteps = 100;
+    double tolerance = 1e-11;
+    std::optional<double> relativeTolerance;
+    std::optional<int> maxIterations;
+    LinearSolverKind linearSolver = LinearSolverKind::automatic;
+    std::string petscOptions;                                        // as written
+    std::vector<std::pair<std::string, std::string>> petscOptionList;  // (name, value or ""), parsed
+    StiffeningOptions stiffening;
+    std::string file;                  // the dictionary's file, for later errors
+
+    bool automaticSubSteps() const { return subSteps == 0; }
+    // A short description, e.g. "coupled nonlinear (newton), weighting inverseDistanceSquared".
+    std::string describe() const;
+
+    // Reads the coefficient dictionary; throws rbm::InputError for unknown keywords and bad values.
+    static RigidBodyMotionOptions read(const io::Dictionary& coefficients);
+    // The keywords read() accepts, in documentation order.
+    static const std::vector<std::string_view>& keywords();
+};
+
+std::string_view couplingName(RbmCoupling coupling);
+std::string_view formulationName(RbmFormulation formulation);
+std::string_view algorithmName(RbmAlgorithm algorithm);
+std::string_view linearSolverName(LinearSolverKind kind);
+
+// Splits a PETSc option string ("-ksp_type cg -ksp_monitor -ksp_rtol 1e-8") into (name,
+// value) pairs, value "" for flags. A word that is not an option name (a '-' followed by a
+// letter) and follows no option is an error (std::invalid_argument).
+std::vector<std::pair<std::string, std::string>> parsePetscOptionString(std::string_view text);
+
+} // namespace rbm::motion

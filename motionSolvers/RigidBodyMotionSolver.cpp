@@ -1,0 +1,788 @@
+#include "RigidBodyMotionSolver.hpp"
+
+#include "CellNeighbourGraph.hpp"
+#include "CoupledLinearizedSolver.hpp"
+#include "CoupledNewtonSolver.hpp"
+#include "DecoupledSolver.hpp"
+#include "InputError.hpp"
+#include "LocalGlobalSolver.hpp"
+#include "MeshGeometry.hpp"
+#include "MotionSolverRegistry.hpp"
+#include "PetscSupport.hpp"
+#include "PointPatchDisplacement.hpp"
+#include "PseudoTwoDExtraction.hpp"
+#include "RbmEnergy.hpp"
+#include "Stiffening.hpp"
+#include "SubStepping.hpp"
+#include "ThesisQuality.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <stdexcept>
+
+namespace rbm::motion {
+
+namespace {
+
+// ---------------------------------------------------------------------------------------
+// PETSc options of the coefficient dictionary (`petscOptions "..."`), present in PETSc's
+// options database only while this solver builds or runs its PETSc objects, so that two
+// solvers in one program do not see each other's options. Options already in the database
+// (the program's command line, PETSC_OPTIONS) are left alone: the command line wins.
+class ScopedPetscOptions {
+public:
+    explicit ScopedPetscOptions(const std::vector<std::pair<std::string, std::string>>& options)
+    {
+        for (const auto& [name, value] : options) {
+            PetscBool set = PETSC_FALSE;
+            RBM_CHECK_PETSC(PetscOptionsHasName(nullptr, nullptr, name.c_str(), &set));
+            if (set) continue;
+            RBM_CHECK_PETSC(PetscOptionsSetValue(nullptr, name.c_str(), value.empty() ? nullptr : value.c_str()));
+            inserted_.push_back(name);
+        }
+    }
+    ~ScopedPetscOptions()
+    {
+        for (const std::string& name : inserted_) (void)PetscOptionsClearValue(nullptr, name.c_str());
+    }
+    ScopedPetscOptions(const ScopedPetscOptions&) = delete;
+    ScopedPetscOptions& operator=(const ScopedPetscOptions&) = delete;
+
+private:
+    std::vector<std::string> inserted_;
+};
+
+// ---------------------------------------------------------------------------------------
+// Coupled nonlinear by local/global iterations; where they stall (maxIterations without
+// convergence: a loosely held boundary, thesis §3.1.3), Newton finishes from where they stopped.
+class LocalGlobalThenNewton final : public RbmSolver {
+public:
+    LocalGlobalThenNewton(const RbmProblem& problem, LocalGlobalOptions localGlobal, CoupledNewtonOptions newton)
+        : problem_(problem), localGlobal_(problem, localGlobal), newtonOptions_(newton)
+    {}
+    const RbmProblem& problem() const override { return problem_; }
+    RbmResult solve(std::span<const Vector3> prescribedDisplacement, const RbmState* initialGuess) override
+    {
+        RbmResult first = localGlobal_.solve(prescribedDisplacement, initialGuess);
+        if (first.converged) return first;
+        if (!newton_) newton_ = std::make_unique<CoupledNewtonSolver>(problem_, newtonOptions_);
+        RbmResult second = newton_->solve(prescribedDisplacement, &first);
+        second.iterations += first.iterations;
+        second.linearIterations += first.linearIterations;
+        second.reason = "local/global stalled (" + first.reason + "), then Newton: " + second.reason;
+        return second;
+    }
+
+private:
+    const RbmProblem& problem_;
+    LocalGlobalSolver localGlobal_;
+    CoupledNewtonOptions newtonOptions_;
+    std::unique_ptr<CoupledNewtonSolver> newton_;
+};
+
+// ---------------------------------------------------------------------------------------
+// The prescribed displacement along a sub-step path, from `from` (fraction 0) to `to`
+// (fraction 1). Prescribed nodes are grouped by the patch that prescribes them; a group whose
+// motion from -> to is rigid moves along the rigid motion (a rotation is split into rotations,
+// not chords: DESIGN.md §2), others along straight lines.
+class BoundaryPath {
+public:
+    BoundaryPath(int dimension, const std::vector<Vector3>& reference, const std::vector<int>& groupOffsets,
+                 const std::vector<int>& groupNodes, std::span<const Vector3> from, std::span<const Vector3> to)
+        : dimension_(dimension), reference_(reference), groupOffsets_(groupOffsets), groupNodes_(groupNodes),
+          from_(from.begin(), from.end()), to_(to.begin(), to.end())
+    {
+        const int groupCount = static_cast<int>(groupOffsets.size()) - 1;
+        motions_.resize(groupCount);
+        for (int group = 0; group < groupCount; ++group) fit(group);
+    }
+
+    std::vector<Vector3> at(double fraction) const
+    {
+        if (fraction >= 1.0) return to_;
+        std::vector<Vector3> values(to_.size());
+        for (std::size_t node = 0; node < values.size(); ++node)
+            values[node] = from_[node] + fraction * (to_[node] - from_[node]);
+        for (std::size_t group = 0; group < motions_.size(); ++group) {
+            const GroupMotion& motion = motions_[group];
+            if (!motion.rigid) continue;
+            const Matrix3 rotation = dimension_ == 2 ? planarRotation(fraction * motion.rotation.z)
+                                                    : rotationFromVector(fraction * motion.rotation);
+            for (int k = groupOffsets_[group]; k < groupOffsets_[group + 1]; ++k) {
+                const int node = groupNodes_[k];
+                const Vector3 start = position(node, from_);
+                Vector3 value = motion.centre + fraction * motion.translation + rotation * (start - motion.centre) -
+                                flat(reference_[node]);
+                if (dimension_ == 2) value.z = 0.0;
+                values[node] = value;
+            }
+        }
+        return values;
+    }
+
+private:
+    struct GroupMotion {
+        bool rigid = false;
+        Vector3 centre;       // of the group at `from`
+        Vector3 translation;  // of the centre
+        Vector3 rotation;     // 2D: (0, 0, θ) counter-clockwise; 3D: rotation vector
+    };
+
+    Vector3 flat(Vector3 v) const
+    {
+        if (dimension_ == 2) v.z = 0.0;
+        return v;
+    }
+    Vector3 position(int node, const std::vector<Vector3>& displacement) const
+    {
+        return flat(reference_[node] + displacement[node]);
+    }
+
+    void fit(int group)
+    {
+        const int begin = groupOffsets_[group];
+        const int end = groupOffsets_[group + 1];
+        if (end == begin) return;
+        Vector3 centreFrom;
+        Vector3 centreTo;
+        for (int k = begin; k < end; ++k) {
+            centreFrom += position(groupNodes_[k], from_);
+            centreTo += position(groupNodes_[k], to_);
+        }
+        centreFrom /= static_cast<double>(end - begin);
+        centreTo /= static_cast<double>(end - begin);
+        Matrix3 rotation = Matrix3::identity();
+        Vector3 parameters;
+        double radius = 0.0;
+        double largestMove = 0.0;
+        if (dimension_ == 2) {
+            double crossSum = 0.0;
+            double dotSum = 0.0;
+            for (int k = begin; k < end; ++k) {
+                const Vector3 a = position(groupNodes_[k], from_) - centreFrom;
+                const Vector3 b = position(groupNodes_[k], to_) - centreTo;
+                crossSum += a.x * b.y - a.y * b.x;
+                dotSum += a.x * b.x + a.y * b.y;
+            }
+            parameters.z = bestPlanarAngle(crossSum, dotSum);
+            rotation = planarRotation(parameters.z);
+        } else {
+            Matrix3 covariance;
+            for (int k = begin; k < end; ++k) {
+                const Vector3 a = position(groupNodes_[k], from_) - centreFrom;
+                const Vector3 b = position(groupNodes_[k], to_) - centreTo;
+                for (int r = 0; r < 3; ++r)
+                    for (int c = 0; c < 3; ++c) covariance.m[r][c] += b[r] * a[c];
+            }
+            rotation = bestRotation(covariance);
+            parameters = rotationVectorFromMatrix(rotation);
+            rotation = rotationFromVector(parameters);
+        }
+        double misfit = 0.0;
+        for (int k = begin; k < end; ++k) {
+            const int node = groupNodes_[k];
+            const Vector3 a = position(node, from_) - centreFrom;
+            const Vector3 b = position(node, to_);
+            radius = std::max(radius, norm(a));
+            largestMove = std::max(largestMove, norm(to_[node] - from_[node]));
+            misfit = std::max(misfit, norm(centreTo + rotation * a - b));
+        }
+        GroupMotion& motion = motions_[group];
+        motion.rigid = misfit <= 1e-9 * (radius + largestMove) && std::isfinite(misfit);
+        motion.centre = centreFrom;
+        motion.translation = centreTo - centreFrom;
+        motion.rotation = parameters;
+    }
+
+    int dimension_;
+    const std::vector<Vector3>& reference_;
+    const std::vector<int>& groupOffsets_;
+    const std::vector<int>& groupNodes_;
+    std::vector<Vector3> from_;
+    std::vector<Vector3> to_;
+    std::vector<GroupMotion> motions_;
+};
+
+// Halving of sub-steps that invert cells (automatic sub-steps): a sub-step is split in two
+// while its depth of halving is below maxSubStepSplits. Once a sub-step at the deepest level
+// still inverts cells, splitting is given up for the rest of the solve: smaller steps did not
+// help there, and going on would cost up to 2^depth solves per remaining sub-step.
+class SplitBudget {
+public:
+    explicit SplitBudget(int maximumDepth) : maximumDepth_(maximumDepth) {}
+    bool allows(int depth) const { return !exhausted_ && maximumDepth_ > 0 && depth <= maximumDepth_; }
+    // Whether to keep a sub-step at `depth` whose mesh is (not) valid; false: split it.
+    bool accept(int depth, bool inverted)
+    {
+        if (!inverted) return true;
+        if (depth < maximumDepth_) {
+            ++splits_;
+            return false;
+        }
+        exhausted_ = true;
+        return true;
+    }
+    std::string describe() const
+    {
+        std::string text;
+        if (splits_ > 0) text += " (" + std::to_string(splits_) + " sub-step splits)";
+        if (exhausted_) text += " (a sub-step still inverted cells after " + std::to_string(maximumDepth_) + " splits)";
+        return text;
+    }
+
+private:
+    int maximumDepth_;
+    int splits_ = 0;
+    bool exhausted_ = false;
+};
+
+bool allZero(std::span<const Vector3> values)
+{
+    return std::all_of(values.begin(), values.end(), [](const Vector3& v) { return v == Vector3{}; });
+}
+
+constexpr int heldNode = -2;  // prescribed with zero displacement by the solver itself (conflicting slides, isolated nodes)
+
+} // namespace
+
+// ---------------------------------------------------------------------------------------
+
+struct RigidBodyMotionSolver::Impl {
+    RigidBodyMotionSolver& owner;
+    RigidBodyMotionOptions options;
+    int dimension = 3;
+    std::unique_ptr<PseudoTwoDMesh> twoD;
+    std::shared_ptr<const CellNeighbourGraph> graph;
+    std::vector<Vector3> referencePoints;  // per node (2D: frame coordinates of the front plane)
+    std::vector<double> edgeFactors;       // stiffening, per graph edge; empty: none
+
+    // Node classes of the current problem.
+    std::vector<NodeConstraint> constraints;
+    std::vector<int> prescribingPatch;     // per node: patch that prescribes it, heldNode, or -1
+    std::vector<int> groupOffsets{0};      // prescribed nodes grouped by prescribing patch (CSR)
+    std::vector<int> groupNodes;
+    std::vector<std::uint8_t> pointIsPrescribed;  // per mesh point: written by a condition, not by the solver
+    std::unique_ptr<RbmProblem> problem;
+    std::unique_ptr<RbmSolver> baseSolver;  // for `problem`, kept between solve() calls
+
+    RbmState state;
+    bool hasState = false;
+    std::vector<Vector3> statePrescribed;  // the prescribed displacement `state` belongs to
+
+    // Inverted-cell checks.
+    MeshGeometry geometry;
+    std::vector<Vector3> positions;
+    std::vector<double> smallestPyramid;
+    std::vector<int> faceCounts;
+    Label initialInverted = 0;
+
+    Impl(RigidBodyMotionSolver& solver, RigidBodyMotionOptions solverOptions);
+
+    int nodeCount() const { return static_cast<int>(referencePoints.size()); }
+    Label pointOfNode(int node) const { return twoD ? twoD->frontPointOfNode[node] : node; }
+
+    void buildStiffening();
+    // Recomputes the node classes from the patch conditions; rebuilds the problem when they changed.
+    void updateProblem();
+    std::vector<Vector3> prescribedTarget() const;
+    std::unique_ptr<RbmSolver> makeSolver(const RbmProblem& forProblem) const;
+    std::unique_ptr<RbmProblem> problemAround(std::vector<Vector3> points) const;
+
+    Label countInverted(std::span<const Vector3> nodeDisplacement, double* worstQuality = nullptr);
+    void writeBack();
+
+    void solveOnInitialMesh(std::span<const Vector3> target, MotionSolveReport& report);
+    void solveInIncrements(std::span<const Vector3> target, MotionSolveReport& report);
+};
+
+RigidBodyMotionSolver::Impl::Impl(RigidBodyMotionSolver& solver, RigidBodyMotionOptions solverOptions)
+    : owner(solver), options(std::move(solverOptions))
+{
+    const PolyMesh& mesh = owner.mesh();
+    if (detectPseudoTwoD(mesh) != PseudoTwoDKind::None) {
+        twoD = std::make_unique<PseudoTwoDMesh>(extractPseudoTwoD(mesh));
+        dimension = 2;
+        referencePoints = twoD->planar.points;
+        graph = std::make_shared<const CellNeighbourGraph>(buildCellNeighbourGraph(twoD->planar));
+    } else {
+        dimension = 3;
+        referencePoints = owner.points0();
+        graph = std::make_shared<const CellNeighbourGraph>(buildCellNeighbourGraph(mesh));
+    }
+    buildStiffening();
+    const std::vector<Vector3> zero(referencePoints.size());
+    initialInverted = countInverted(zero);
+    updateProblem();
+}
+
+void RigidBodyMotionSolver::Impl::buildStiffening()
+{
+    const StiffeningOptions& stiffening = options.stiffening;
+    if (stiffening.exponent == 0) return;
+    const PolyMesh& mesh = owner.mesh();
+    std::vector<Label> patches;
+    for (const std::string& name : stiffening.patches) {
+        bool found = false;
+        for (Label p = 0; p < static_cast<Label>(mesh.patches.size()); ++p) {
+            const Patch& patch = mesh.patches[p];
+            const bool inGroup = std::find(patch.inGroups.begin(), patch.inGroups.end(), name) != patch.inGroups.end();
+            if (patch.name == name || inGroup) {
+                if (std::find(patches.begin(), patches.end(), p) == patches.end()) patches.push_back(p);
+                found = true;
+            }
+        }
+        if (!found) {
+            std::string valid;
+            for (const Patch& patch : mesh.patches) valid += (valid.empty() ? "" : " ") + patch.name;
+            throw InputError(options.file, stiffening.line,
+                             "stiffening: unknown patch " + name + ". Valid patches are: " + valid);
+        }
+    }
+    NearestSurface surface;
+    if (twoD) {
+        std::vector<Label> planarPatches;
+        for (Label p = 0; p < static_cast<Label>(twoD->planar.patches.size()); ++p)
+            if (std::find(patches.begin(), patches.end(), twoD->planar.patches[p].polyMeshPatch) != patches.end())
+                planarPatches.push_back(p);
+        surface = patchSurface(twoD->planar, planarPatches);
+    } else {
+        surface = patchSurface(mesh, owner.points0(), patches);
+    }
+    edgeFactors = motion::stiffeningFactors(*graph, referencePoints, dimension, surface, stiffening.exponent);
+}
+
+void RigidBodyMotionSolver::Impl::updateProblem()
+{
+    const int n = nodeCount();
+    std::vector<NodeConstraint> classes(n);
+    std::vector<int> prescriber(n, -1);
+    const auto& conditions = owner.patchConditions_;
+    for (std::size_t patch = 0; patch < conditions.size(); ++patch) {
+        const PointPatchDisplacement& condition = *conditions[patch];
+        const PatchNodeClass nodeClass = condition.nodeClass();
+        if (nodeClass == PatchNodeClass::ignored || nodeClass == PatchNodeClass::free) continue;
+        const std::vector<Label>& points = condition.meshPoints();
+        for (std::size_t k = 0; k < points.size(); ++k) {
+            const int node = twoD ? twoD->nodeOfPoint[points[k]] : points[k];
+            if (node < 0) continue;
+            NodeConstraint& constraint = classes[node];
+            if (nodeClass == PatchNodeClass::prescribed) {
+                // Prescribed beats sliding beats free; between prescribing patches the first wins.
+                if (constraint.kind != NodeKind::prescribed || prescriber[node] == heldNode) {
+                    constraint = {NodeKind::prescribed, {}};
+                    prescriber[node] = static_cast<int>(patch);
+                }
+                continue;
+            }
+            if (constraint.kind == NodeKind::prescribed) continue;
+            Vector3 normal = condition.slidingNormal(static_cast<Label>(k));
+            if (twoD) {
+                normal = twoD->frame.toLocal(normal);
+                normal.z = 0.0;
+            }
+            const double length = norm(normal);
+            if (!(length > 1e-8)) continue;  // a plane parallel to the 2D plane: no in-plane constraint
+            normal /= length;
+            if (constraint.kind == NodeKind::free) {
+                constraint = {NodeKind::sliding, normal};
+            } else if (norm(cross(constraint.normal, normal)) > 1e-6) {
+                // Two different planes: one plane per node is all the core offers, so hold it.
+                constraint = {NodeKind::prescribed, {}};
+                prescriber[node] = heldNode;
+            }
+        }
+    }
+    // Nodes without neighbours (points no cell uses) cannot move.
+    for (int node = 0; node < n; ++node) {
+        if (graph->offsets[node + 1] == graph->offsets[node] && classes[node].kind != NodeKind::prescribed) {
+            classes[node] = {NodeKind::prescribed, {}};
+            prescriber[node] = heldNode;
+        }
+    }
+
+    bool changed = !problem || classes.size() != constraints.size();
+    for (int node = 0; !changed && node < n; ++node)
+        changed = classes[node].kind != constraints[node].kind || !(classes[node].normal == constraints[node].normal) ||
+                  prescriber[node] != prescribingPatch[node];
+    if (!changed) return;
+
+    constraints = std::move(classes);
+    prescribingPatch = std::move(prescriber);
+    const int patchCount = static_cast<int>(conditions.size());
+    groupOffsets.assign(patchCount + 1, 0);
+    for (int node = 0; node < n; ++node)
+        if (prescribingPatch[node] >= 0) ++groupOffsets[prescribingPatch[node] + 1];
+    for (int p = 0; p < patchCount; ++p) groupOffsets[p + 1] += groupOffsets[p];
+    groupNodes.assign(groupOffsets.back(), 0);
+    {
+        std::vector<int> next(groupOffsets.begin(), groupOffsets.end() - 1);
+        for (int node = 0; node < n; ++node)
+            if (prescribingPatch[node] >= 0) groupNodes[next[prescribingPatch[node]]++] = node;
+    }
+    pointIsPrescribed.assign(owner.mesh().points.size(), 0);
+    for (const auto& condition : conditions)
+        if (condition->nodeClass() == PatchNodeClass::prescribed)
+            for (Label point : condition->meshPoints()) pointIsPrescribed[point] = 1;
+
+    baseSolver.reset();
+    problem.reset();
+    problem = problemAround(referencePoints);
+}
+
+std::unique_ptr<RbmProblem> RigidBodyMotionSolver::Impl::problemAround(std::vector<Vector3> points) const
+{
+    std::unique_ptr<RbmProblem> result;
+    try {
+        result = std::make_unique<RbmProblem>(dimension, std::move(points), graph, constraints, options.weighting);
+    } catch (const std::invalid_argument& error) {
+        throw InputError(options.file, 0,
+                         std::string("rigidBodyMotionSolver: the mesh and its boundary conditions do not define an RBM "
+                                     "problem: ") +
+                             error.what() +
+                             " (every group of moving points needs a prescribed patch, e.g. fixedValue, holding it)");
+    }
+    if (!edgeFactors.empty()) result->setEdgeWeightFactors(edgeFactors);
+    return result;
+}
+
+std::vector<Vector3> RigidBodyMotionSolver::Impl::prescribedTarget() const
+{
+    const int n = nodeCount();
+    std::vector<Vector3> target(n);
+    const std::vector<Vector3>& displacement = owner.pointDisplacement();
+    for (int node = 0; node < n; ++node) {
+        if (prescribingPatch[node] < 0) continue;  // free, sliding (offset 0: u·n = 0) or held
+        Vector3 u = displacement[pointOfNode(node)];
+        if (twoD) {
+            u = twoD->frame.toLocal(u);
+            u.z = 0.0;
+        }
+        target[node] = u;
+    }
+    return target;
+}
+
+std::unique_ptr<RbmSolver> RigidBodyMotionSolver::Impl::makeSolver(const RbmProblem& forProblem) const
+{
+    const bool linearized = options.formulation == RbmFormulation::linearized;
+    if (options.coupling == RbmCoupling::decoupled) {
+        DecoupledOptions decoupled;
+        decoupled.model = linearized ? DecoupledModel::linearized : DecoupledModel::nonlinear;
+        decoupled.linearSolver = options.linearSolver;
+        if (options.relativeTolerance) decoupled.linearRelativeTolerance = *options.relativeTolerance;
+        if (options.maxIterations) decoupled.maximumIterations = *options.maxIterations;
+        decoupled.displacementTolerance = options.tolerance;
+        return std::make_unique<DecoupledSolver>(forProblem, decoupled);
+    }
+    if (linearized) {
+        CoupledLinearizedOptions coupled;
+        coupled.linearSolver = options.linearSolver;
+        if (options.relativeTolerance) coupled.relativeTolerance = *options.relativeTolerance;
+        return std::make_unique<CoupledLinearizedSolver>(forProblem, coupled);
+    }
+    CoupledNewtonOptions newton;
+    newton.linearSolver = options.linearSolver;
+    if (options.relativeTolerance) {
+        newton.relativeTolerance = *options.relativeTolerance;
+        newton.linearRelativeTolerance = std::min(*options.relativeTolerance, newton.linearRelativeTolerance);
+    }
+    if (options.tolerance != RigidBodyMotionOptions{}.tolerance) {
+        // The same scale as the core's default: tolerance × (mean w|d|) × √(unknown nodes).
+        const CellNeighbourGraph& g = forProblem.graph();
+        const auto& points = forProblem.referencePoints();
+        double sum = 0.0;
+        for (int i = 0; i < forProblem.nodeCount(); ++i)
+            for (int e = g.offsets[i]; e < g.offsets[i + 1]; ++e) {
+                Vector3 d = points[g.neighbours[e]] - points[i];
+                if (dimension == 2) d.z = 0.0;
+                sum += forProblem.edgeWeights()[e] * norm(d);
+            }
+        const double mean = g.neighbours.empty() ? 1.0 : sum / static_cast<double>(g.neighbours.size());
+        newton.absoluteTolerance = options.tolerance * mean * std::sqrt(static_cast<double>(forProblem.unknownNodeCount()));
+    }
+    if (options.algorithm == RbmAlgorithm::localGlobal) {
+        LocalGlobalOptions localGlobal;
+        localGlobal.linearSolver = options.linearSolver;
+        if (options.relativeTolerance) localGlobal.linearRelativeTolerance = *options.relativeTolerance;
+        localGlobal.maximumIterations = options.maxIterations.value_or(200);
+        localGlobal.displacementTolerance = options.tolerance;
+        return std::make_unique<LocalGlobalThenNewton>(forProblem, localGlobal, newton);
+    }
+    if (options.maxIterations) newton.maximumIterations = *options.maxIterations;
+    return std::make_unique<CoupledNewtonSolver>(forProblem, newton);
+}
+
+Label RigidBodyMotionSolver::Impl::countInverted(std::span<const Vector3> nodeDisplacement, double* worstQuality)
+{
+    double worst = std::numeric_limits<double>::infinity();
+    Label inverted = 0;
+    if (twoD) {
+        const PlanarMesh& planar = twoD->planar;
+        positions.resize(planar.points.size());
+        for (std::size_t node = 0; node < positions.size(); ++node) {
+            positions[node] = planar.points[node];
+            positions[node].x += nodeDisplacement[node].x;
+            positions[node].y += nodeDisplacement[node].y;
+        }
+        for (Label c = 0; c < planar.cellCount(); ++c) {
+            if (planar.signedArea(c, positions) <= 0.0) ++inverted;
+            if (!worstQuality) continue;
+            const auto cell = planar.cell(c);
+            if (cell.size() == 3)
+                worst = std::min(worst, triangleMeanRatio(positions[cell[0]], positions[cell[1]], positions[cell[2]]));
+            else if (cell.size() == 4)
+                worst = std::min(worst, quadrilateralShape(positions[cell[0]], positions[cell[1]], positions[cell[2]],
+                                                           positions[cell[3]]));
+        }
+    } else {
+        const PolyMesh& mesh = owner.mesh();
+        const std::vector<Vector3>& points0 = owner.points0();
+        positions.resize(points0.size());
+        for (std::size_t p = 0; p < positions.size(); ++p) positions[p] = points0[p] + nodeDisplacement[p];
+        updateMeshGeometry(mesh, positions, geometry);
+        const std::size_t cellCount = geometry.cellVolumes.size();
+        smallestPyramid.assign(cellCount, std::numeric_limits<double>::infinity());
+        faceCounts.assign(cellCount, 0);
+        const auto& centres = geometry.cellCentres;
+        const Label internalFaces = mesh.internalFaceCount();
+        // Face pyramids with apex at the cell centre (ThesisQuality's inverted-cell test).
+        for (Label f = 0; f < mesh.faceCount(); ++f) {
+            const Vector3& area = geometry.faceAreas[f];
+            const Vector3& centre = geometry.faceCentres[f];
+            const Label own = mesh.owner[f];
+            smallestPyramid[own] = std::min(smallestPyramid[own], dot(area, centre - centres[own]) / 3.0);
+            ++faceCounts[own];
+            if (f < internalFaces) {
+                const Label nei = mesh.neighbour[f];
+                smallestPyramid[nei] = std::min(smallestPyramid[nei], dot(area, centres[nei] - centre) / 3.0);
+                ++faceCounts[nei];
+            }
+        }
+        for (std::size_t c = 0; c < cellCount; ++c) {
+            const double volume = geometry.cellVolumes[c];
+            if (smallestPyramid[c] <= 0.0 || volume <= 0.0) ++inverted;
+            // Smallest pyramid relative to the mean pyramid V / faces: 1 for a cube, ≤ 0 when inverted.
+            if (worstQuality && std::abs(volume) > 0.0)
+                worst = std::min(worst, smallestPyramid[c] * faceCounts[c] / std::abs(volume));
+        }
+    }
+    if (worstQuality) *worstQuality = std::isfinite(worst) ? worst : 1.0;
+    return inverted;
+}
+
+void RigidBodyMotionSolver::Impl::writeBack()
+{
+    std::vector<Vector3>& displacement = owner.pointDisplacement();
+    if (twoD) {
+        const std::vector<Vector3> lifted = twoD->liftDisplacements(state.displacement);
+        for (std::size_t p = 0; p < lifted.size(); ++p) {
+            const Label node = twoD->nodeOfPoint[p];
+            if (node < 0 || pointIsPrescribed[p]) continue;
+            displacement[p] = prescribingPatch[node] == heldNode ? Vector3{} : lifted[p];
+        }
+    } else {
+        for (int node = 0; node < nodeCount(); ++node) {
+            if (pointIsPrescribed[node]) continue;
+            displacement[node] = prescribingPatch[node] == heldNode ? Vector3{} : state.displacement[node];
+        }
+    }
+}
+
+// Nonlinear variants: the energy on the initial mesh for the total prescribed displacement,
+// continued from the previous solve (or from the linearized solution at the first).
+void RigidBodyMotionSolver::Impl::solveOnInitialMesh(std::span<const Vector3> target, MotionSolveReport& report)
+{
+    if (!baseSolver) baseSolver = makeSolver(*problem);
+    const int n = nodeCount();
+    const std::vector<Vector3> start = hasState ? statePrescribed : std::vector<Vector3>(n);
+    const BoundaryPath path(dimension, referencePoints, groupOffsets, groupNodes, start, target);
+    const bool automatic = options.automaticSubSteps();
+    const int count = automatic ? 1 : options.subSteps;
+
+    RbmState current;
+    bool haveCurrent = hasState;
+    if (hasState) current = state;
+    report.converged = true;
+    SplitBudget splitting(automatic ? options.maxSubStepSplits : 0);
+    RbmResult last;
+    // Segment [from, to] of the path at depth `depth` of halving.
+    auto solveSegment = [&](auto&& self, double from, double to, int depth) -> void {
+        const std::vector<Vector3> boundary = path.at(to);
+        RbmResult result = baseSolver->solve(boundary, haveCurrent ? &current : nullptr);
+        report.iterations += result.iterations;
+        if (splitting.allows(depth) && !splitting.accept(depth, countInverted(result.displacement) > initialInverted)) {
+            const double middle = 0.5 * (from + to);
+            self(self, from, middle, depth + 1);
+            self(self, middle, to, depth + 1);
+            return;
+        }
+        ++report.subStepCount;
+        report.converged = report.converged && result.converged;
+        current = static_cast<const RbmState&>(result);
+        haveCurrent = true;
+        last = std::move(result);
+    };
+    for (int step = 1; step <= count; ++step)
+        solveSegment(solveSegment, static_cast<double>(step - 1) / count, static_cast<double>(step) / count, 0);
+    state = std::move(current);
+    report.residual = last.residualNorm;
+    report.energy = last.energy;
+    report.reason = last.reason + splitting.describe();
+}
+
+// Linearized variants: the thesis' sub-step method (§2.6), each increment solved around the
+// mesh of the previous one, always starting from the initial mesh.
+void RigidBodyMotionSolver::Impl::solveInIncrements(std::span<const Vector3> target, MotionSolveReport& report)
+{
+    if (!baseSolver) baseSolver = makeSolver(*problem);
+    const int n = nodeCount();
+    const std::vector<Vector3> zero(n);
+    const BoundaryPath path(dimension, referencePoints, groupOffsets, groupNodes, zero, target);
+    const bool automatic = options.automaticSubSteps();
+    int count = options.subSteps;
+    bool capped = false;
+    if (automatic) {
+        count = automaticSubStepCount(*problem, target);
+        if (count > options.maxSubSteps) {
+            count = options.maxSubSteps;
+            capped = true;
+        }
+    }
+
+    std::vector<Vector3> displacement(n);
+    std::vector<Matrix3> rotation(dimension == 3 ? n : 0, Matrix3::identity());
+    std::vector<double> planarAngle(dimension == 2 ? n : 0, 0.0);
+    std::vector<Vector3> reached(n);
+    report.converged = true;
+    SplitBudget splitting(automatic ? options.maxSubStepSplits : 0);
+    RbmResult last;
+    auto solveSegment = [&](auto&& self, double from, double to, int depth) -> void {
+        const std::vector<Vector3> boundary = path.at(to);
+        std::vector<Vector3> increment(n);
+        for (int node = 0; node < n; ++node) increment[node] = boundary[node] - reached[node];
+        RbmResult result;
+        if (from == 0.0) {
+            result = baseSolver->solve(increment);
+        } else {
+            std::vector<Vector3> points(referencePoints);
+            for (int node = 0; node < n; ++node) {
+                points[node].x += displacement[node].x;
+                points[node].y += displacement[node].y;
+                if (dimension == 3) points[node].z += displacement[node].z;
+            }
+            const std::unique_ptr<RbmProblem> stepProblem = problemAround(std::move(points));
+            result = makeSolver(*stepProblem)->solve(increment);
+        }
+        report.iterations += result.iterations;
+        std::vector<Vector3> candidate(displacement);
+        for (int node = 0; node < n; ++node) candidate[node] += result.displacement[node];
+        if (splitting.allows(depth) && !splitting.accept(depth, countInverted(candidate) > initialInverted)) {
+            const double middle = 0.5 * (from + to);
+            self(self, from, middle, depth + 1);
+            self(self, middle, to, depth + 1);
+            return;
+        }
+        ++report.subStepCount;
+        report.converged = report.converged && result.converged;
+        displacement = std::move(candidate);
+        for (int node = 0; node < n; ++node) {
+            if (!problem->isUnknown(node)) continue;
+            if (dimension == 2) planarAngle[node] += result.rotation[node].z;
+            else rotation[node] = rotationFromVector(result.rotation[node]) * rotation[node];
+        }
+        reached = boundary;
+        last = std::move(result);
+    };
+    for (int step = 1; step <= count; ++step)
+        solveSegment(solveSegment, static_cast<double>(step - 1) / count, static_cast<double>(step) / count, 0);
+
+    state.displacement = std::move(displacement);
+    state.rotation.assign(n, Vector3{});
+    for (int node : problem->unknownNodes())
+        state.rotation[node] = dimension == 2 ? Vector3{0.0, 0.0, planarAngle[node]} : rotationParameters(3, rotation[node]);
+    std::vector<double> unknowns(problem->unknownCount());
+    packUnknowns(*problem, state, unknowns);
+    report.energy = RbmEnergy(*problem, RotationModel::exact, target).value(unknowns);
+    report.residual = last.residualNorm;
+    report.reason = last.reason;
+    if (capped) report.reason += " (automatic sub-steps capped at maxSubSteps " + std::to_string(options.maxSubSteps) + ")";
+    report.reason += splitting.describe();
+}
+
+// ---------------------------------------------------------------------------------------
+
+RigidBodyMotionSolver::RigidBodyMotionSolver(const PolyMesh& mesh, const io::Dictionary& coefficients,
+                                             const io::Dictionary* pointDisplacement,
+                                             std::filesystem::path caseDirectory)
+    : MotionSolver(mesh, coefficients, pointDisplacement, std::move(caseDirectory))
+{
+    // Parse the options first so that the PETSc options apply while the core builds its objects.
+    RigidBodyMotionOptions options = RigidBodyMotionOptions::read(coefficients);
+    if (!PetscSession::isInitialized())
+        throw std::logic_error("rigidBodyMotionSolver: PETSc is not initialised (create a PetscSession first)");
+    const ScopedPetscOptions petscOptions(options.petscOptionList);
+    impl_ = std::make_unique<Impl>(*this, std::move(options));
+}
+
+RigidBodyMotionSolver::~RigidBodyMotionSolver()
+{
+    if (impl_) {
+        // Solvers before the problem they refer to.
+        impl_->baseSolver.reset();
+        impl_->problem.reset();
+    }
+}
+
+const RigidBodyMotionOptions& RigidBodyMotionSolver::options() const { return impl_->options; }
+int RigidBodyMotionSolver::dimension() const { return impl_->dimension; }
+const PseudoTwoDMesh* RigidBodyMotionSolver::twoDMesh() const { return impl_->twoD.get(); }
+const RbmProblem* RigidBodyMotionSolver::problem() const { return impl_->problem.get(); }
+const RbmState& RigidBodyMotionSolver::state() const { return impl_->state; }
+const std::vector<double>& RigidBodyMotionSolver::stiffeningFactors() const { return impl_->edgeFactors; }
+Label RigidBodyMotionSolver::initialInvertedCellCount() const { return impl_->initialInverted; }
+
+MotionSolveReport RigidBodyMotionSolver::solve()
+{
+    const auto started = std::chrono::steady_clock::now();
+    Impl& impl = *impl_;
+    const ScopedPetscOptions petscOptions(impl.options.petscOptionList);
+    impl.updateProblem();
+    const std::vector<Vector3> target = impl.prescribedTarget();
+
+    MotionSolveReport report;
+    if (allZero(target)) {
+        // E ≥ 0 and E = 0 at zero displacement: the initial mesh itself, exactly.
+        impl.state.displacement.assign(target.size(), Vector3{});
+        impl.state.rotation.assign(target.size(), Vector3{});
+        report.converged = true;
+        report.reason = "no boundary displacement";
+        // Not a warm start: the next solve starts from the linearized solution, as Newton
+        // from zero can stop where node frames flip (DESIGN.md §1).
+        impl.hasState = false;
+    } else {
+        if (impl.options.formulation == RbmFormulation::nonlinear) impl.solveOnInitialMesh(target, report);
+        else impl.solveInIncrements(target, report);
+        impl.hasState = true;
+        impl.statePrescribed = target;
+    }
+    impl.writeBack();
+    report.invertedCellCount = impl.countInverted(impl.state.displacement, &report.worstQuality);
+    report.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    return report;
+}
+
+// ---------------------------------------------------------------------------------------
+
+void registerBuiltinMotionSolvers(MotionSolverRegistry& registry)
+{
+    registry.add(std::string(RigidBodyMotionSolver::typeNameString),
+                 [](const PolyMesh& mesh, const io::Dictionary& coefficients, const io::Dictionary* pointDisplacement,
+                    const std::filesystem::path& caseDirectory) -> std::unique_ptr<MotionSolver> {
+                     return std::make_unique<RigidBodyMotionSolver>(mesh, coefficients, pointDisplacement, caseDirectory);
+                 });
+}
+
+} // namespace rbm::motion

@@ -1,0 +1,249 @@
+#include "Stiffening.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+namespace rbm::motion {
+
+namespace {
+
+constexpr int leafSize = 4;
+
+double squaredPointSegment(const Vector3& p, const Vector3& a, const Vector3& b)
+{
+    const Vector3 ab = b - a;
+    const double length2 = normSquared(ab);
+    double t = length2 > 0.0 ? dot(p - a, ab) / length2 : 0.0;
+    t = std::clamp(t, 0.0, 1.0);
+    return normSquared(p - (a + t * ab));
+}
+
+// Closest point on triangle abc to p (Ericson, Real-Time Collision Detection, §5.1.5),
+// returned as the squared distance. Degenerate triangles fall back to their edges.
+double squaredPointTriangle(const Vector3& p, const Vector3& a, const Vector3& b, const Vector3& c)
+{
+    const Vector3 ab = b - a;
+    const Vector3 ac = c - a;
+    if (normSquared(cross(ab, ac)) <= 1e-30 * normSquared(ab) * normSquared(ac) || normSquared(ab) == 0.0 ||
+        normSquared(ac) == 0.0) {
+        return std::min({squaredPointSegment(p, a, b), squaredPointSegment(p, b, c), squaredPointSegment(p, c, a)});
+    }
+    const Vector3 ap = p - a;
+    const double d1 = dot(ab, ap);
+    const double d2 = dot(ac, ap);
+    if (d1 <= 0.0 && d2 <= 0.0) return normSquared(ap);
+    const Vector3 bp = p - b;
+    const double d3 = dot(ab, bp);
+    const double d4 = dot(ac, bp);
+    if (d3 >= 0.0 && d4 <= d3) return normSquared(bp);
+    const double vc = d1 * d4 - d3 * d2;
+    if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return normSquared(p - (a + (d1 / (d1 - d3)) * ab));
+    const Vector3 cp = p - c;
+    const double d5 = dot(ab, cp);
+    const double d6 = dot(ac, cp);
+    if (d6 >= 0.0 && d5 <= d6) return normSquared(cp);
+    const double vb = d5 * d2 - d1 * d6;
+    if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return normSquared(p - (a + (d2 / (d2 - d6)) * ac));
+    const double va = d3 * d6 - d5 * d4;
+    if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0)
+        return normSquared(p - (b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b)));
+    const double denominator = 1.0 / (va + vb + vc);
+    const double v = vb * denominator;
+    const double w = vc * denominator;
+    return normSquared(p - (a + v * ab + w * ac));
+}
+
+double squaredBoxDistance(const Vector3& p, const Vector3& min, const Vector3& max)
+{
+    double sum = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        const double below = min[k] - p[k];
+        const double above = p[k] - max[k];
+        const double gap = std::max({below, above, 0.0});
+        sum += gap * gap;
+    }
+    return sum;
+}
+
+} // namespace
+
+void NearestSurface::addTriangle(const Vector3& a, const Vector3& b, const Vector3& c)
+{
+    primitives_.push_back({a, b, c, false});
+}
+
+void NearestSurface::addSegment(const Vector3& a, const Vector3& b)
+{
+    primitives_.push_back({a, b, b, true});
+}
+
+double NearestSurface::squaredDistance(const Primitive& primitive, const Vector3& point) const
+{
+    return primitive.segment ? squaredPointSegment(point, primitive.a, primitive.b)
+                             : squaredPointTriangle(point, primitive.a, primitive.b, primitive.c);
+}
+
+void NearestSurface::build()
+{
+    nodes_.clear();
+    if (primitives_.empty()) return;
+    nodes_.reserve(2 * primitives_.size() / leafSize + 2);
+    nodes_.emplace_back();
+    const int root = 0;
+    // Iterative build with an explicit stack of (node, begin, end).
+    struct Task {
+        int node, begin, end;
+    };
+    std::vector<Task> stack{{root, 0, static_cast<int>(primitives_.size())}};
+    auto centroid = [](const Primitive& p) { return (p.a + p.b + p.c) / 3.0; };
+    while (!stack.empty()) {
+        const Task task = stack.back();
+        stack.pop_back();
+        Box box{{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+                 std::numeric_limits<double>::infinity()},
+                {-std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+                 -std::numeric_limits<double>::infinity()}};
+        Box centres = box;
+        for (int k = task.begin; k < task.end; ++k) {
+            const Primitive& p = primitives_[k];
+            for (const Vector3* v : {&p.a, &p.b, &p.c}) {
+                for (int d = 0; d < 3; ++d) {
+                    box.min[d] = std::min(box.min[d], (*v)[d]);
+                    box.max[d] = std::max(box.max[d], (*v)[d]);
+                }
+            }
+            const Vector3 c = centroid(p);
+            for (int d = 0; d < 3; ++d) {
+                centres.min[d] = std::min(centres.min[d], c[d]);
+                centres.max[d] = std::max(centres.max[d], c[d]);
+            }
+        }
+        nodes_[task.node].box = box;
+        if (task.end - task.begin <= leafSize) {
+            nodes_[task.node].first = task.begin;
+            nodes_[task.node].count = task.end - task.begin;
+            continue;
+        }
+        // Split at the median of the centroids along the longest axis of their box.
+        int axis = 0;
+        for (int d = 1; d < 3; ++d)
+            if (centres.max[d] - centres.min[d] > centres.max[axis] - centres.min[axis]) axis = d;
+        const int middle = task.begin + (task.end - task.begin) / 2;
+        std::nth_element(primitives_.begin() + task.begin, primitives_.begin() + middle, primitives_.begin() + task.end,
+                         [&](const Primitive& l, const Primitive& r) { return centroid(l)[axis] < centroid(r)[axis]; });
+        const int left = static_cast<int>(nodes_.size());
+        nodes_.emplace_back();
+        nodes_.emplace_back();
+        nodes_[task.node].first = left;
+        nodes_[task.node].count = 0;
+        stack.push_back({left, task.begin, middle});
+        stack.push_back({left + 1, middle, task.end});
+    }
+}
+
+double NearestSurface::distance(const Vector3& point) const
+{
+    if (nodes_.empty()) return std::numeric_limits<double>::infinity();
+    double best = std::numeric_limits<double>::infinity();
+    // Depth is O(log F); a small fixed stack avoids allocation per query.
+    int stack[128];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const Node& node = nodes_[stack[--top]];
+        if (squaredBoxDistance(point, node.box.min, node.box.max) >= best) continue;
+        if (node.count > 0) {
+            for (int k = node.first; k < node.first + node.count; ++k)
+                best = std::min(best, squaredDistance(primitives_[k], point));
+            continue;
+        }
+        // Visit the nearer child first (pushed last).
+        const int left = node.first;
+        const double dl = squaredBoxDistance(point, nodes_[left].box.min, nodes_[left].box.max);
+        const double dr = squaredBoxDistance(point, nodes_[left + 1].box.min, nodes_[left + 1].box.max);
+        if (top + 2 > 128) continue;  // cannot happen for a median-split tree of < 2^60 primitives
+        if (dl < dr) {
+            stack[top++] = left + 1;
+            stack[top++] = left;
+        } else {
+            stack[top++] = left;
+            stack[top++] = left + 1;
+        }
+    }
+    return std::sqrt(best);
+}
+
+NearestSurface patchSurface(const PolyMesh& mesh, std::span<const Vector3> points, std::span<const Label> patches)
+{
+    NearestSurface surface;
+    for (Label patchIndex : patches) {
+        const Patch& patch = mesh.patches[patchIndex];
+        for (Label f = patch.startFace; f < patch.startFace + patch.faceCount; ++f) {
+            const auto face = mesh.face(f);
+            if (face.size() == 3) {
+                surface.addTriangle(points[face[0]], points[face[1]], points[face[2]]);
+                continue;
+            }
+            Vector3 centre;
+            for (Label p : face) centre += points[p];
+            centre /= static_cast<double>(face.size());
+            for (std::size_t k = 0; k < face.size(); ++k)
+                surface.addTriangle(points[face[k]], points[face[(k + 1) % face.size()]], centre);
+        }
+    }
+    surface.build();
+    return surface;
+}
+
+NearestSurface patchSurface(const PlanarMesh& planar, std::span<const Label> planarPatches)
+{
+    NearestSurface surface;
+    for (Label patchIndex : planarPatches) {
+        const PlanarPatch& patch = planar.patches[patchIndex];
+        for (Label e = patch.startEdge; e < patch.startEdge + patch.edgeCount; ++e) {
+            const auto [a, b] = planar.edge(e);
+            Vector3 pa = planar.points[a];
+            Vector3 pb = planar.points[b];
+            pa.z = pb.z = 0.0;
+            surface.addSegment(pa, pb);
+        }
+    }
+    surface.build();
+    return surface;
+}
+
+std::vector<double> stiffeningFactors(const CellNeighbourGraph& graph, std::span<const Vector3> points, int dimension,
+                                      const NearestSurface& surface, int exponent)
+{
+    std::vector<double> factors(graph.neighbours.size(), 1.0);
+    if (exponent == 0 || surface.empty()) return factors;
+    auto position = [&](Label node) {
+        Vector3 p = points[node];
+        if (dimension == 2) p.z = 0.0;
+        return p;
+    };
+    double shortest = std::numeric_limits<double>::infinity();
+    for (Label i = 0; i < graph.nodeCount(); ++i)
+        for (Label e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e)
+            shortest = std::min(shortest, norm(position(graph.neighbours[e]) - position(i)));
+    if (!(shortest > 0.0) || !std::isfinite(shortest)) return factors;
+    for (Label i = 0; i < graph.nodeCount(); ++i) {
+        for (Label e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e) {
+            const Label j = graph.neighbours[e];
+            if (j < i) continue;  // set both directions from the i < j one: exactly symmetric
+            const double d = std::max(surface.distance(0.5 * (position(i) + position(j))), shortest);
+            const double ratio = shortest / d;
+            const double factor = exponent == 1 ? ratio : ratio * ratio;
+            factors[e] = factor;
+            // The reverse edge j → i.
+            const auto row = graph.neighboursOf(j);
+            const auto found = std::lower_bound(row.begin(), row.end(), i);
+            factors[graph.offsets[j] + (found - row.begin())] = factor;
+        }
+    }
+    return factors;
+}
+
+} // namespace rbm::motion

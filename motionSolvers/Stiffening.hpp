@@ -1,0 +1,71 @@
+#pragma once
+// Edge stiffening near chosen patches, the RBM counterpart of OpenFOAM's
+// `inverseDistance` / `quadratic inverseDistance` motion diffusivities: the weight w_ij of
+// every graph edge is multiplied by
+//
+//     f_ij = (h_min / d_ij)^k,     d_ij = max(distance(midpoint of i–j, patches), h_min)
+//
+// with k = 1 (inverseDistance) or 2 (quadratic inverseDistance), the distance measured in
+// the reference mesh to the nearest face of the patches (2D: the nearest boundary edge in
+// the plane), and h_min the shortest edge of the mesh, so that f ≤ 1 and the edges touching
+// the patches keep their weight while edges far away count less: the mesh near the patches
+// moves more rigidly.
+//
+// Distances come from a bounding-volume hierarchy over the patch faces (triangulated about
+// their centres) or edges: O(log F) per edge, no O(N·F) scan.
+
+#include "CellNeighbourGraph.hpp"
+#include "PlanarMesh.hpp"
+#include "PolyMesh.hpp"
+#include "Vector3.hpp"
+
+#include <span>
+#include <vector>
+
+namespace rbm::motion {
+
+// Nearest distance from a point to a set of triangles and segments.
+class NearestSurface {
+public:
+    void addTriangle(const Vector3& a, const Vector3& b, const Vector3& c);
+    void addSegment(const Vector3& a, const Vector3& b);
+    // Builds the hierarchy; call after the last add and before distance().
+    void build();
+
+    bool empty() const { return primitives_.empty(); }
+    std::size_t size() const { return primitives_.size(); }
+    // Euclidean distance to the nearest primitive (+∞ when there is none).
+    double distance(const Vector3& point) const;
+
+private:
+    struct Primitive {
+        Vector3 a, b, c;
+        bool segment = false;
+    };
+    struct Box {
+        Vector3 min, max;
+    };
+    struct Node {
+        Box box;
+        int first = 0;  // leaf: primitives [first, first + count); inner: children first and first + 1 (node indices)
+        int count = 0;  // 0 for inner nodes
+    };
+    double squaredDistance(const Primitive& primitive, const Vector3& point) const;
+    int buildNode(int begin, int end);
+
+    std::vector<Primitive> primitives_;
+    std::vector<Node> nodes_;
+};
+
+// The faces of the given 3D patches (indices into mesh.patches), each triangulated about the
+// average of its points, at positions `points`.
+NearestSurface patchSurface(const PolyMesh& mesh, std::span<const Vector3> points, std::span<const Label> patches);
+// The boundary edges of the given planar patches (indices into planar.patches).
+NearestSurface patchSurface(const PlanarMesh& planar, std::span<const Label> planarPatches);
+
+// f_ij per directed edge of `graph` (same order as graph.neighbours), see the file comment.
+// 2D (dimension 2) uses the x and y of the points only. exponent 0 gives all ones.
+std::vector<double> stiffeningFactors(const CellNeighbourGraph& graph, std::span<const Vector3> points, int dimension,
+                                      const NearestSurface& surface, int exponent);
+
+} // namespace rbm::motion

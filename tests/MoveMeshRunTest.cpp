@@ -1,0 +1,972 @@
+// rbmMoveMesh's time loop (apps/MoveMeshRun), its log (io/RunLog) and atomic time folders
+// (io/TimeFolderWriter). The cases are built here in temporary folders: a MeshGenerators
+// mesh written with io::writePolyMesh, and controlDict / dynamicMeshDict / pointDisplacement
+// text. Expected write times follow OpenFOAM v1912's Time::operator++ rules, worked out by
+// hand in the comments; geometric expectations are invariants (one full period returns to
+// the initial mesh; a rigid translation keeps every cell a perfect cube; a boundary that
+// turns inside out forces an inverted cell).
+
+#include "FoamDictionaryWriter.hpp"
+#include "MeshGenerators.hpp"
+#include "MoveMeshRun.hpp"
+#include "PetscTestEnvironment.hpp"
+#include "PointVectorField.hpp"
+#include "PolyMeshReader.hpp"
+#include "PolyMeshWriter.hpp"
+#include "RunLog.hpp"
+#include "TimeFolderWriter.hpp"
+#include "TimeName.hpp"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+#include <vtkCellData.h>
+#include <vtkDataArray.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLUnstructuredGridReader.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <numbers>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+static auto* const petscEnvironment = ::testing::AddGlobalTestEnvironment(new rbm::test::PetscTestEnvironment);
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace rbm;
+
+// ---- helpers ------------------------------------------------------------------------------------
+
+class TempDir {
+public:
+    explicit TempDir(const std::string& name)
+        : path_(fs::temp_directory_path() / ("rbmMoveMeshRunTest_" + name + "_" + std::to_string(::getpid())))
+    {
+        fs::remove_all(path_);
+        fs::create_directories(path_);
+    }
+    ~TempDir() { fs::remove_all(path_); }
+    const fs::path& path() const { return path_; }
+
+private:
+    fs::path path_;
+};
+
+void writeText(const fs::path& file, const std::string& text)
+{
+    fs::create_directories(file.parent_path());
+    std::ofstream out(file);
+    out << text;
+}
+
+std::string readText(const fs::path& file)
+{
+    std::ifstream in(file);
+    std::stringstream buffer;
+    buffer << in.rdbuf();
+    return buffer.str();
+}
+
+std::string header(const std::string& className, const std::string& location, const std::string& object)
+{
+    return "FoamFile\n{\n    version 2.0;\n    format ascii;\n    class " + className + ";\n    location \"" +
+           location + "\";\n    object " + object + ";\n}\n\n";
+}
+
+// system/controlDict entries, OpenFOAM spelling.
+struct Control {
+    std::string startFrom = "startTime";
+    std::string startTime = "0";
+    std::string endTime = "0.3";
+    std::string deltaT = "0.05";
+    std::string writeControl = "timeStep";
+    std::string writeInterval = "2";
+    std::string writeFormat = "ascii";
+    int writePrecision = 12;
+    bool compression = false;
+
+    std::string text() const
+    {
+        return header("dictionary", "system", "controlDict") + "application rbmMoveMesh;\nstartFrom " + startFrom +
+               ";\nstartTime " + startTime + ";\nstopAt endTime;\nendTime " + endTime + ";\ndeltaT " + deltaT +
+               ";\nwriteControl " + writeControl + ";\nwriteInterval " + writeInterval + ";\nwriteFormat " +
+               writeFormat + ";\nwritePrecision " + std::to_string(writePrecision) + ";\nwriteCompression " +
+               (compression ? "on" : "off") + ";\ntimeFormat general;\ntimePrecision 6;\n";
+    }
+};
+
+std::string dynamicMeshDict(const std::string& coefficients = "", const std::string& solver = "rigidBodyMotionSolver")
+{
+    return header("dictionary", "constant", "dynamicMeshDict") + "dynamicFvMesh dynamicMotionSolverFvMesh;\n" +
+           "motionSolver " + solver + ";\n" + "rigidBodyMotionSolverCoeffs\n{\n" + coefficients + "\n}\n";
+}
+
+std::string pointDisplacement(const std::string& boundaryField)
+{
+    return header("pointVectorField", "0", "pointDisplacement") +
+           "dimensions [0 1 0 0 0 0 0];\ninternalField uniform (0 0 0);\nboundaryField\n{\n" + boundaryField + "\n}\n";
+}
+
+constexpr double pi = std::numbers::pi;
+
+// The left side of the unit square pitches about its midpoint (0, 0.5):
+// angle(t) = 0.1 sin(2π t), period 1; the right side is fixed, top and bottom are free.
+const std::string pitchingBoundary = R"foam(
+    left
+    {
+        type            angularOscillatingDisplacement;
+        axis            (0 0 1);
+        origin          (0 0.5 0);
+        angle0          0;
+        amplitude       0.1;
+        omega           6.283185307179586;
+        value           uniform (0 0 0);
+    }
+    right           { type fixedValue; value uniform (0 0 0); }
+    "(top|bottom)"  { type zeroGradient; }
+    frontAndBack    { type empty; }
+)foam";
+
+// The left side moves right: 0.05 at t = 0.1 (valid), 2 at t = 0.2, beyond the fixed right
+// side at x = 1. Top and bottom slide along their lines, so the boundary polygon's signed
+// area is -(2 − 1)·1 < 0 whatever the interior does: the cell areas sum to it, so at least
+// one cell is inverted at t = 0.2.
+const std::string invertingBoundary = R"foam(
+    left
+    {
+        type            uniformFixedValue;
+        uniformValue    table ((0 (0 0 0)) (0.1 (0.05 0 0)) (0.2 (2 0 0)) (0.3 (2 0 0)));
+        value           uniform (0 0 0);
+    }
+    right           { type fixedValue; value uniform (0 0 0); }
+    "(top|bottom)"  { type slip; }
+    frontAndBack    { type empty; }
+)foam";
+
+// A 2D case: 8 × 8 quadrilaterals on the unit square, one layer 0.1 deep.
+void writeSquareCase(const fs::path& caseDir, const Control& control, const std::string& boundaryField,
+                     const std::string& coefficients = "")
+{
+    const PolyMesh mesh = makeExtruded2D(8, 8, Vector3{0, 0, 0}, Vector3{1, 1, 0.1});
+    io::writePolyMesh(caseDir / "constant" / "polyMesh", mesh, io::FoamWriteOptions{});
+    writeText(caseDir / "system" / "controlDict", control.text());
+    writeText(caseDir / "constant" / "dynamicMeshDict", dynamicMeshDict(coefficients));
+    writeText(caseDir / "0" / "pointDisplacement", pointDisplacement(boundaryField));
+}
+
+// What a run printed and what the solver held after every step.
+struct RunResult {
+    int status = -1;
+    std::string out;
+    std::string err;
+    std::vector<io::StepLogRecord> records;
+    std::map<std::string, std::vector<Vector3>> points;         // by time name
+    std::map<std::string, std::vector<Vector3>> displacements;  // by time name
+};
+
+RunResult runCase(const fs::path& caseDir, bool writeVtk = true, bool writeInvalid = false)
+{
+    app::MoveMeshOptions options;
+    options.caseDirectory = caseDir;
+    options.writeVtk = writeVtk;
+    options.writeInvalid = writeInvalid;
+    RunResult result;
+    std::ostringstream out;
+    std::ostringstream err;
+    result.status = app::runMoveMesh(options, out, err, [&](const app::StepObservation& step) {
+        result.records.push_back(step.record);
+        result.points[step.record.timeName] = step.points;
+        result.displacements[step.record.timeName] = step.solver.pointDisplacement();
+    });
+    result.out = out.str();
+    result.err = err.str();
+    return result;
+}
+
+// Names of the time folders of a case.
+std::set<std::string> timeFolders(const fs::path& caseDir)
+{
+    std::set<std::string> names;
+    for (const auto& time : io::listTimeDirectories(caseDir)) names.insert(time.name);
+    return names;
+}
+
+// Every file and folder under `root` with its size and modification time.
+std::map<std::string, std::string> listing(const fs::path& root)
+{
+    std::map<std::string, std::string> entries;
+    for (const auto& entry : fs::recursive_directory_iterator(root)) {
+        const std::string name = fs::relative(entry.path(), root).string();
+        if (entry.is_directory()) {
+            entries[name] = "folder";
+        } else {
+            entries[name] = std::to_string(entry.file_size()) + " bytes, modified " +
+                            std::to_string(entry.last_write_time().time_since_epoch().count());
+        }
+    }
+    return entries;
+}
+
+void expectNoTemporaryFiles(const fs::path& caseDir)
+{
+    for (const auto& entry : fs::recursive_directory_iterator(caseDir)) {
+        EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos)
+            << "left behind: " << entry.path();
+    }
+}
+
+double largestDistance(const std::vector<Vector3>& a, const std::vector<Vector3>& b)
+{
+    EXPECT_EQ(a.size(), b.size());
+    double largest = 0.0;
+    for (std::size_t i = 0; i < std::min(a.size(), b.size()); ++i) largest = std::max(largest, norm(a[i] - b[i]));
+    return largest;
+}
+
+bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+// A minimal JSON reader for the flat objects of log.jsonl: string, number, true, false,
+// null values. Returns false for anything that is not such an object.
+struct JsonValue {
+    enum class Kind { String, Number, Bool, Null } kind = Kind::Null;
+    std::string text;
+    double number = 0.0;
+    bool boolean = false;
+};
+
+bool parseFlatJsonObject(const std::string& line, std::map<std::string, JsonValue>& object)
+{
+    std::size_t i = 0;
+    auto skip = [&] {
+        while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+    };
+    auto parseString = [&](std::string& out) {
+        if (i >= line.size() || line[i] != '"') return false;
+        for (++i; i < line.size() && line[i] != '"'; ++i) {
+            if (line[i] == '\\') {
+                if (++i >= line.size()) return false;
+                const char c = line[i];
+                out += c == 'n' ? '\n' : c == 't' ? '\t' : c;
+            } else {
+                out += line[i];
+            }
+        }
+        if (i >= line.size()) return false;
+        ++i;
+        return true;
+    };
+    skip();
+    if (i >= line.size() || line[i++] != '{') return false;
+    while (true) {
+        skip();
+        std::string key;
+        if (!parseString(key)) return false;
+        skip();
+        if (i >= line.size() || line[i++] != ':') return false;
+        skip();
+        JsonValue value;
+        if (i < line.size() && line[i] == '"') {
+            value.kind = JsonValue::Kind::String;
+            if (!parseString(value.text)) return false;
+        } else if (line.compare(i, 4, "true") == 0 || line.compare(i, 5, "false") == 0) {
+            value.kind = JsonValue::Kind::Bool;
+            value.boolean = line[i] == 't';
+            i += value.boolean ? 4 : 5;
+        } else if (line.compare(i, 4, "null") == 0) {
+            value.kind = JsonValue::Kind::Null;
+            i += 4;
+        } else {
+            const char* begin = line.c_str() + i;
+            char* end = nullptr;
+            value.kind = JsonValue::Kind::Number;
+            value.number = std::strtod(begin, &end);
+            if (end == begin) return false;
+            i += static_cast<std::size_t>(end - begin);
+        }
+        if (object.count(key)) return false;   // duplicate key
+        object[key] = value;
+        skip();
+        if (i < line.size() && line[i] == ',') {
+            ++i;
+            continue;
+        }
+        if (i < line.size() && line[i] == '}') {
+            ++i;
+            skip();
+            return i == line.size();
+        }
+        return false;
+    }
+}
+
+std::vector<std::map<std::string, JsonValue>> readJsonLines(const fs::path& file)
+{
+    std::vector<std::map<std::string, JsonValue>> lines;
+    std::ifstream in(file);
+    std::string line;
+    while (std::getline(in, line)) {
+        std::map<std::string, JsonValue> object;
+        EXPECT_TRUE(parseFlatJsonObject(line, object)) << "not a JSON object: " << line;
+        lines.push_back(std::move(object));
+    }
+    return lines;
+}
+
+// ---- command line ----------------------------------------------------------------------------
+
+TEST(MoveMeshCommandLine, SeparatesItsOwnOptionsFromPetscOptions)
+{
+    const char* argv[] = {"rbmMoveMesh", "-case", "cases/airfoil", "-ksp_type", "cg",   "-noVTK", "-rbm_pc_type",
+                          "gamg",        "-ksp_rtol", "1e-12",    "-writeInvalid", "-info", "-ksp_atol", "-1"};
+    const app::CommandLine commandLine = app::parseCommandLine(static_cast<int>(std::size(argv)), argv);
+    EXPECT_EQ(commandLine.options.caseDirectory, fs::path("cases/airfoil"));
+    EXPECT_FALSE(commandLine.options.writeVtk);
+    EXPECT_TRUE(commandLine.options.writeInvalid);
+    EXPECT_FALSE(commandLine.options.parallel);
+    EXPECT_FALSE(commandLine.help);
+    const std::vector<std::string> petsc = {"-ksp_type", "cg",    "-rbm_pc_type", "gamg",      "-ksp_rtol",
+                                            "1e-12",     "-info", "-ksp_atol",    "-1"};
+    EXPECT_EQ(commandLine.petscArguments, petsc);
+}
+
+TEST(MoveMeshCommandLine, RejectsUnknownOptionsStrayWordsAndAMissingCase)
+{
+    const char* misspelt[] = {"rbmMoveMesh", "-noVtk"};
+    EXPECT_THROW(app::parseCommandLine(2, misspelt), app::UsageError);
+    const char* stray[] = {"rbmMoveMesh", "myCase"};
+    EXPECT_THROW(app::parseCommandLine(2, stray), app::UsageError);
+    const char* noValue[] = {"rbmMoveMesh", "-case"};
+    EXPECT_THROW(app::parseCommandLine(2, noValue), app::UsageError);
+    try {
+        const char* argv[] = {"rbmMoveMesh", "-ksp_type", "cg", "-frobnicate"};
+        app::parseCommandLine(4, argv);
+        ADD_FAILURE() << "no UsageError";
+    } catch (const app::UsageError& error) {
+        EXPECT_TRUE(contains(error.what(), "unknown option '-frobnicate'")) << error.what();
+    }
+}
+
+TEST(MoveMeshCommandLine, HelpListsOptionsDictionaryKeywordsAndExitStatuses)
+{
+    char program[] = "rbmMoveMesh";
+    char help[] = "-help";
+    char* argv[] = {program, help, nullptr};
+    std::ostringstream out;
+    std::ostringstream err;
+    EXPECT_EQ(app::moveMeshMain(2, argv, out, err), app::exitSuccess);
+    const std::string text = out.str();
+    for (const char* expected : {"-case DIR", "-noVTK", "-parallel", "-writeInvalid", "-version", "startFrom",
+                                 "writeCompression", "motionSolver", "rigidBodyMotionSolver", "subSteps",
+                                 "angularOscillatingDisplacement", "fixedValue", "log.jsonl", "Exit status"}) {
+        EXPECT_TRUE(contains(text, expected)) << "no '" << expected << "' in:\n" << text;
+    }
+    EXPECT_TRUE(err.str().empty());
+}
+
+TEST(MoveMeshCommandLine, VersionNamesTheProgramAndPetsc)
+{
+    char program[] = "rbmMoveMesh";
+    char version[] = "-version";
+    char* argv[] = {program, version, nullptr};
+    std::ostringstream out;
+    std::ostringstream err;
+    EXPECT_EQ(app::moveMeshMain(2, argv, out, err), app::exitSuccess);
+    EXPECT_EQ(out.str().rfind("rbmMoveMesh ", 0), 0u) << out.str();
+    EXPECT_TRUE(contains(out.str(), "PETSc 3.")) << out.str();
+}
+
+TEST(MoveMeshCommandLine, AnUnknownOptionExitsWithTwoAndPrintsTheUsage)
+{
+    char program[] = "rbmMoveMesh";
+    char bad[] = "-latestTime";
+    char* argv[] = {program, bad, nullptr};
+    std::ostringstream out;
+    std::ostringstream err;
+    EXPECT_EQ(app::moveMeshMain(2, argv, out, err), app::exitBadInput);
+    EXPECT_TRUE(contains(err.str(), "unknown option '-latestTime'")) << err.str();
+    EXPECT_TRUE(contains(err.str(), "Usage: rbmMoveMesh")) << err.str();
+}
+
+// ---- log --------------------------------------------------------------------------------------
+
+io::StepLogRecord sampleRecord()
+{
+    io::StepLogRecord record;
+    record.step = 1;
+    record.time = 0.025;
+    record.timeName = "0.025";
+    record.subSteps = 1;
+    record.iterations = 3;
+    record.residual = 2.1e-10;
+    record.energy = 0.5;
+    record.converged = true;
+    record.reason = "CONVERGED_RTOL";
+    record.worstQuality = 0.31;
+    record.maxNonOrthogonality = 28.4;
+    record.maxSkewness = 0.8;
+    record.invertedCells = 0;
+    record.wallSeconds = 0.12;
+    return record;
+}
+
+TEST(RunLog, FormatsTheStepLineInFixedColumns)
+{
+    io::StepLogRecord record = sampleRecord();
+    EXPECT_EQ(io::formatStepLogLine(record),
+              "Time = 0.025     sub-steps  1  iterations    3  residual 2.10e-10  worst quality  0.3100"
+              "  max non-orthogonality  28.40  inverted 0  wall   0.120 s");
+    // Another time name and other figures of the usual widths: the same columns.
+    io::StepLogRecord other = record;
+    other.timeName = "1";
+    other.subSteps = 12;
+    other.iterations = 250;
+    other.worstQuality = -0.5;
+    other.maxNonOrthogonality = 5.0;
+    const std::string first = io::formatStepLogLine(record);
+    const std::string second = io::formatStepLogLine(other);
+    for (const char* column : {"sub-steps", "iterations", "residual", "worst quality", "max non-orthogonality",
+                               "inverted", "wall"}) {
+        EXPECT_EQ(first.find(column), second.find(column)) << column << "\n" << first << "\n" << second;
+    }
+}
+
+TEST(RunLog, MarksFailedAndWrittenSteps)
+{
+    io::StepLogRecord record = sampleRecord();
+    record.written = true;
+    EXPECT_TRUE(contains(io::formatStepLogLine(record), "wall   0.120 s  written"));
+    record.converged = false;
+    record.reason = "DIVERGED_ITS";
+    record.invertedCells = 4;
+    record.written = false;
+    const std::string line = io::formatStepLogLine(record);
+    EXPECT_TRUE(contains(line, "inverted 4")) << line;
+    EXPECT_TRUE(contains(line, "NOT CONVERGED (DIVERGED_ITS)  INVALID")) << line;
+    EXPECT_FALSE(contains(line, "written")) << line;
+}
+
+TEST(RunLog, JsonLineHoldsEveryFieldWithNullForNonFiniteNumbers)
+{
+    io::StepLogRecord record = sampleRecord();
+    record.worstQuality = std::nan("");
+    record.reason = "say \"why\"\n";
+    record.written = true;
+    const std::string line = io::stepLogJson(record);
+    EXPECT_EQ(line.find('\n'), std::string::npos);
+    std::map<std::string, JsonValue> object;
+    ASSERT_TRUE(parseFlatJsonObject(line, object)) << line;
+    const std::vector<std::string> keys = {"step",     "time",        "timeName",     "subSteps",
+                                           "iterations", "residual",  "energy",       "converged",
+                                           "reason",   "worstQuality", "maxNonOrthogonality", "maxSkewness",
+                                           "invertedCells", "wallSeconds", "written"};
+    EXPECT_EQ(object.size(), keys.size());
+    for (const std::string& key : keys) EXPECT_EQ(object.count(key), 1u) << key;
+    EXPECT_EQ(object["time"].number, 0.025);
+    EXPECT_EQ(object["timeName"].text, "0.025");
+    EXPECT_EQ(object["iterations"].number, 3);
+    EXPECT_EQ(object["residual"].number, 2.1e-10);
+    EXPECT_TRUE(object["converged"].boolean);
+    EXPECT_EQ(object["reason"].text, "say \"why\"\n");
+    EXPECT_EQ(object["worstQuality"].kind, JsonValue::Kind::Null);
+    EXPECT_EQ(object["maxNonOrthogonality"].number, 28.4);
+    EXPECT_TRUE(object["written"].boolean);
+}
+
+TEST(RunLog, JsonNumbersReadBackToTheSameDouble)
+{
+    for (const double value : {0.1 + 0.2, 1.0 / 3.0, 6.02214076e23, -4.9e-324, 0.0}) {
+        EXPECT_EQ(std::strtod(io::jsonNumber(value).c_str(), nullptr), value) << io::jsonNumber(value);
+    }
+    EXPECT_EQ(io::jsonNumber(INFINITY), "null");
+}
+
+// ---- time folders ------------------------------------------------------------------------------
+
+TEST(TimeFolderWriter, CommitTurnsTheStagingFolderIntoTheTimeFolder)
+{
+    TempDir dir("commitNew");
+    fs::path staging;
+    {
+        io::TimeFolderWriter folder(dir.path(), "0.5");
+        staging = folder.staging();
+        EXPECT_EQ(staging.parent_path(), dir.path());
+        EXPECT_EQ(staging.filename().string().rfind("0.5.tmp-", 0), 0u) << staging;
+        writeText(folder.staging() / "polyMesh" / "points", "points");
+        writeText(folder.staging() / "pointDisplacement", "displacement");
+        // Not visible as a time before commit.
+        EXPECT_TRUE(timeFolders(dir.path()).empty());
+        EXPECT_FALSE(fs::exists(dir.path() / "0.5"));
+        EXPECT_EQ(folder.commit(), dir.path() / "0.5");
+    }
+    EXPECT_FALSE(fs::exists(staging));
+    EXPECT_EQ(readText(dir.path() / "0.5" / "polyMesh" / "points"), "points");
+    EXPECT_EQ(readText(dir.path() / "0.5" / "pointDisplacement"), "displacement");
+    EXPECT_EQ(timeFolders(dir.path()), std::set<std::string>{"0.5"});
+}
+
+TEST(TimeFolderWriter, CommitIntoAnExistingTimeKeepsOtherFilesAndRemovesCompressionTwins)
+{
+    TempDir dir("commitExisting");
+    writeText(dir.path() / "0.5" / "U", "velocity of a flow solver");
+    writeText(dir.path() / "0.5" / "polyMesh" / "points", "old points");
+    writeText(dir.path() / "0.5" / "pointDisplacement.gz", "old compressed displacement");
+    {
+        io::TimeFolderWriter folder(dir.path(), "0.5");
+        writeText(folder.staging() / "polyMesh" / "points.gz", "new points");
+        writeText(folder.staging() / "pointDisplacement", "new displacement");
+        folder.commit();
+    }
+    EXPECT_EQ(readText(dir.path() / "0.5" / "U"), "velocity of a flow solver");
+    EXPECT_EQ(readText(dir.path() / "0.5" / "polyMesh" / "points.gz"), "new points");
+    EXPECT_FALSE(fs::exists(dir.path() / "0.5" / "polyMesh" / "points"));
+    EXPECT_EQ(readText(dir.path() / "0.5" / "pointDisplacement"), "new displacement");
+    EXPECT_FALSE(fs::exists(dir.path() / "0.5" / "pointDisplacement.gz"));
+    expectNoTemporaryFiles(dir.path());
+}
+
+TEST(TimeFolderWriter, AWriterThatFailsBeforeCommitLeavesNothingBehind)
+{
+    TempDir dir("failed");
+    try {
+        io::TimeFolderWriter folder(dir.path(), "1e-05");
+        writeText(folder.staging() / "polyMesh" / "points", "half");
+        throw std::runtime_error("disk full");
+    } catch (const std::runtime_error&) {
+    }
+    EXPECT_TRUE(fs::is_empty(dir.path()));
+}
+
+TEST(TimeFolderWriter, RecognisesAndRemovesStaleStagingFolders)
+{
+    EXPECT_TRUE(io::isTimeFolderStagingName("0.5.tmp-1a2b-3"));
+    EXPECT_TRUE(io::isTimeFolderStagingName("1e-05.tmp-ff-0"));
+    EXPECT_FALSE(io::isTimeFolderStagingName("0.5"));
+    EXPECT_FALSE(io::isTimeFolderStagingName("constant.tmp-12"));
+    EXPECT_FALSE(io::isTimeFolderStagingName("0.orig"));
+    EXPECT_FALSE(io::isTimeFolderStagingName("0.5.tmp-"));
+    EXPECT_FALSE(io::isTimeFolderStagingName("0.5.tmp-xyz"));
+
+    TempDir dir("stale");
+    fs::create_directories(dir.path() / "0.1.tmp-ab-0" / "polyMesh");
+    fs::create_directories(dir.path() / "0.1");
+    fs::create_directories(dir.path() / "notes.tmp-1");
+    EXPECT_EQ(io::removeStaleStagingFolders(dir.path()), std::vector<std::string>{"0.1.tmp-ab-0"});
+    EXPECT_FALSE(fs::exists(dir.path() / "0.1.tmp-ab-0"));
+    EXPECT_TRUE(fs::exists(dir.path() / "0.1"));
+    EXPECT_TRUE(fs::exists(dir.path() / "notes.tmp-1"));
+}
+
+// ---- runs ----------------------------------------------------------------------------------------
+
+TEST(MoveMeshRun, WritesEveryWriteIntervalStepsInFoldersWithOpenFoamNames)
+{
+    TempDir dir("timeStep");
+    Control control;   // deltaT 0.05 to 0.3, timeStep every 2 steps: steps 2, 4, 6
+    writeSquareCase(dir.path(), control, pitchingBoundary);
+    const RunResult result = runCase(dir.path());
+    ASSERT_EQ(result.status, app::exitSuccess) << result.out << result.err;
+
+    EXPECT_EQ(timeFolders(dir.path()), (std::set<std::string>{"0", "0.1", "0.2", "0.3"}));
+    ASSERT_EQ(result.records.size(), 6u);
+    const std::vector<Vector3> points0 = io::readPolyMeshPoints(dir.path() / "constant" / "polyMesh");
+    for (const std::string name : {"0.1", "0.2", "0.3"}) {
+        SCOPED_TRACE(name);
+        // points: ascii with writePrecision 12 (relative 5e-13 of coordinates up to 1).
+        const std::vector<Vector3> written = io::readPolyMeshPoints(dir.path() / name);
+        EXPECT_LT(largestDistance(written, result.points.at(name)), 1e-11);
+        // pointDisplacement: the total displacement from points0, and the boundary conditions.
+        const PolyMesh mesh = io::readPolyMesh(dir.path() / "constant" / "polyMesh");
+        const io::PointVectorField field = io::readPointVectorField(dir.path() / name / "pointDisplacement", mesh);
+        EXPECT_LT(largestDistance(field.internalField, result.displacements.at(name)), 1e-11);
+        std::vector<Vector3> moved(points0.size());
+        for (std::size_t i = 0; i < moved.size(); ++i) moved[i] = points0[i] + field.internalField[i];
+        EXPECT_LT(largestDistance(moved, written), 1e-11);
+        ASSERT_EQ(field.boundaryField.size(), 5u);
+        EXPECT_EQ(field.boundaryField[0].patchName, "left");
+        EXPECT_EQ(field.boundaryField[0].type, "angularOscillatingDisplacement");
+        EXPECT_EQ(field.boundaryField[0].dictionary.get<double>("amplitude"), 0.1);
+        EXPECT_TRUE(field.boundaryField[0].dictionary.contains("value"));
+        EXPECT_EQ(field.boundaryField[2].type, "zeroGradient");
+        EXPECT_EQ(field.boundaryField[4].type, "empty");
+    }
+    // The motion did happen: at t = 0.3 the left side has turned by 0.1 sin(0.6π).
+    const double angle = 0.1 * std::sin(2 * pi * 0.3);
+    const std::vector<Vector3>& atEnd = result.points.at("0.3");
+    // Point (i, j) = (0, 0) of the front plane is label 0: (0, 0) turned about (0, 0.5).
+    EXPECT_NEAR(atEnd[0].x, 0.5 * std::sin(angle), 1e-12);
+    EXPECT_NEAR(atEnd[0].y, 0.5 - 0.5 * std::cos(angle), 1e-12);
+
+    // VTK: the initial mesh and every written time, listed in the .pvd.
+    const std::string caseName = dir.path().filename().string();
+    for (const std::string name : {"0", "0.1", "0.2", "0.3"}) {
+        EXPECT_TRUE(fs::exists(dir.path() / "VTK" / (caseName + "_" + name + ".vtu"))) << name;
+        EXPECT_TRUE(contains(readText(dir.path() / "VTK" / (caseName + ".pvd")), caseName + "_" + name + ".vtu"));
+    }
+    EXPECT_FALSE(fs::exists(dir.path() / "VTK" / (caseName + "_0.05.vtu")));
+    EXPECT_TRUE(contains(result.out, "Time = 0.05 "));
+    expectNoTemporaryFiles(dir.path());
+}
+
+TEST(MoveMeshRun, BinaryCompressedPointsEqualTheSolverPointsBitForBit)
+{
+    TempDir dir("binary");
+    Control control;
+    control.writeFormat = "binary";
+    control.compression = true;
+    control.endTime = "0.1";
+    writeSquareCase(dir.path(), control, pitchingBoundary);
+    const RunResult result = runCase(dir.path(), false);
+    ASSERT_EQ(result.status, app::exitSuccess) << result.out << result.err;
+    EXPECT_TRUE(fs::exists(dir.path() / "0.1" / "polyMesh" / "points.gz"));
+    EXPECT_FALSE(fs::exists(dir.path() / "0.1" / "polyMesh" / "points"));
+    EXPECT_TRUE(fs::exists(dir.path() / "0.1" / "pointDisplacement.gz"));
+    EXPECT_EQ(io::readPolyMeshPoints(dir.path() / "0.1"), result.points.at("0.1"));
+    EXPECT_FALSE(fs::exists(dir.path() / "VTK"));   // -noVTK
+}
+
+TEST(MoveMeshRun, RunTimeWritesWhereOpenFoamsWriteIndexGrows)
+{
+    // OpenFOAM v1912: write when label(((t − startTime) + deltaT/2)/writeInterval) grows.
+    // deltaT 0.03, writeInterval 0.1: t = 0.03..0.3 gives (t + 0.015)/0.1 = 0.45, 0.75, 1.05,
+    // 1.35, 1.65, 1.95, 2.25, 2.55, 2.85, 3.15: the index grows at 0.09, 0.21 and 0.3.
+    for (const std::string writeControl : {"runTime", "adjustableRunTime"}) {
+        SCOPED_TRACE(writeControl);
+        TempDir dir(writeControl);
+        Control control;
+        control.deltaT = "0.03";
+        control.writeControl = writeControl;
+        control.writeInterval = "0.1";
+        writeSquareCase(dir.path(), control, pitchingBoundary);
+        const RunResult result = runCase(dir.path(), false);
+        ASSERT_EQ(result.status, app::exitSuccess) << result.out << result.err;
+        EXPECT_EQ(result.records.size(), 10u);
+        EXPECT_EQ(timeFolders(dir.path()), (std::set<std::string>{"0", "0.09", "0.21", "0.3"}));
+    }
+}
+
+TEST(MoveMeshRun, PitchingOverOnePeriodReturnsToTheInitialMesh)
+{
+    TempDir dir("period");
+    Control control;
+    control.endTime = "1";
+    control.deltaT = "0.125";
+    control.writeInterval = "8";   // only t = 1
+    control.writeFormat = "binary";
+    writeSquareCase(dir.path(), control, pitchingBoundary);
+    const RunResult result = runCase(dir.path(), false);
+    ASSERT_EQ(result.status, app::exitSuccess) << result.out << result.err;
+    EXPECT_EQ(timeFolders(dir.path()), (std::set<std::string>{"0", "1"}));
+
+    const std::vector<Vector3> points0 = io::readPolyMeshPoints(dir.path() / "constant" / "polyMesh");
+    const double meshSize = std::sqrt(1.0 + 1.0 + 0.01);   // bounding-box diagonal
+    // A quarter period in, the mesh has really moved (the left side by up to 0.5·0.1 rad) ...
+    EXPECT_GT(largestDistance(result.points.at("0.25"), points0), 0.04);
+    // ... and after the whole period it is back: the mesh depends only on the boundary's
+    // position at that time (total displacement from points0).
+    EXPECT_LT(largestDistance(result.points.at("1"), points0), 1e-9 * meshSize);
+    EXPECT_LT(largestDistance(io::readPolyMeshPoints(dir.path() / "1"), points0), 1e-9 * meshSize);
+}
+
+TEST(MoveMeshRun, JsonLogHasOneParseableLinePerStep)
+{
+    TempDir dir("json");
+    Control control;
+    writeSquareCase(dir.path(), control, pitchingBoundary);
+    const RunResult result = runCase(dir.path(), false);
+    ASSERT_EQ(result.status, app::exitSuccess) << result.out << result.err;
+    const auto lines = readJsonLines(dir.path() / "postProcessing" / "rbmMoveMesh" / "0" / "log.jsonl");
+    ASSERT_EQ(lines.size(), 6u);
+    const std::vector<std::string> names = {"0.05", "0.1", "0.15", "0.2", "0.25", "0.3"};
+    for (std::size_t k = 0; k < lines.size(); ++k) {
+        auto line = lines[k];
+        SCOPED_TRACE(names[k]);
+        EXPECT_EQ(line["step"].number, static_cast<double>(k + 1));
+        EXPECT_EQ(line["time"].number, 0.05 * static_cast<double>(k + 1));   // startTime + k deltaT
+        EXPECT_EQ(line["timeName"].text, names[k]);
+        EXPECT_TRUE(line["converged"].boolean);
+        EXPECT_EQ(line["invertedCells"].number, 0);
+        EXPECT_GE(line["subSteps"].number, 1);
+        EXPECT_GT(line["worstQuality"].number, 0.5);
+        EXPECT_LE(line["worstQuality"].number, 1.0);
+        EXPECT_GE(line["maxNonOrthogonality"].number, 0.0);
+        EXPECT_EQ(line["written"].boolean, k % 2 == 1);   // every 2nd step
+        for (const char* key : {"residual", "energy", "reason", "maxSkewness", "wallSeconds"}) {
+            EXPECT_EQ(line.count(key), 1u) << key;
+        }
+    }
+    // The readable log has the same steps.
+    for (const std::string& name : names) EXPECT_TRUE(contains(result.out, "Time = " + name + " ")) << name;
+}
+
+TEST(MoveMeshRun, RigidTranslationOfA3DBoxKeepsEveryCellACube)
+{
+    // Every boundary point moves by (0.1, 0.05, 0): the RBM optimum moves every point alike,
+    // so every cube stays a cube: pyramid ratio 1, non-orthogonality 0.
+    TempDir dir("box3D");
+    const PolyMesh mesh = makeHexBox(3, 3, 3, Vector3{0, 0, 0}, Vector3{1, 1, 1});
+    io::writePolyMesh(dir.path() / "constant" / "polyMesh", mesh, io::FoamWriteOptions{});
+    Control control;
+    control.endTime = "0.1";
+    control.deltaT = "0.1";
+    control.writeInterval = "1";
+    writeText(dir.path() / "system" / "controlDict", control.text());
+    writeText(dir.path() / "constant" / "dynamicMeshDict", dynamicMeshDict());
+    writeText(dir.path() / "0" / "pointDisplacement",
+              pointDisplacement(R"(".*" { type fixedValue; value uniform (0.1 0.05 0); })"));
+    const RunResult result = runCase(dir.path());
+    ASSERT_EQ(result.status, app::exitSuccess) << result.out << result.err;
+    ASSERT_EQ(result.records.size(), 1u);
+    EXPECT_NEAR(result.records[0].worstQuality, 1.0, 1e-9);
+    EXPECT_NEAR(result.records[0].maxNonOrthogonality, 0.0, 1e-5);
+    EXPECT_EQ(result.records[0].invertedCells, 0);
+    const std::vector<Vector3> written = io::readPolyMeshPoints(dir.path() / "0.1");
+    for (std::size_t i = 0; i < written.size(); ++i) {
+        EXPECT_NEAR(norm(written[i] - mesh.points[i] - Vector3{0.1, 0.05, 0}), 0.0, 1e-10) << i;
+    }
+    EXPECT_TRUE(fs::exists(dir.path() / "VTK" / (dir.path().filename().string() + "_0.1.vtu")));
+}
+
+TEST(MoveMeshRun, AStepWithInvertedCellsExitsWithOneAndWritesNothingForIt)
+{
+    TempDir dir("inverting");
+    Control control;
+    control.deltaT = "0.1";
+    control.writeInterval = "1";
+    writeSquareCase(dir.path(), control, invertingBoundary, "formulation linearized; subSteps 1;");
+    const auto before = listing(dir.path());
+    const RunResult result = runCase(dir.path());
+    EXPECT_EQ(result.status, app::exitRunFailed) << result.out << result.err;
+
+    // Step 1 (t = 0.1) was valid and written; step 2 (t = 0.2) inverted cells and stopped the run.
+    ASSERT_EQ(result.records.size(), 2u);
+    EXPECT_EQ(result.records[0].invertedCells, 0);
+    EXPECT_TRUE(result.records[0].written);
+    EXPECT_GT(result.records[1].invertedCells, 0);
+    EXPECT_FALSE(result.records[1].written);
+    EXPECT_EQ(timeFolders(dir.path()), (std::set<std::string>{"0", "0.1"}));
+    const std::string caseName = dir.path().filename().string();
+    EXPECT_FALSE(fs::exists(dir.path() / "VTK" / (caseName + "_0.2.vtu")));
+    EXPECT_FALSE(contains(readText(dir.path() / "VTK" / (caseName + ".pvd")), "_0.2.vtu"));
+    EXPECT_TRUE(contains(result.err, "time 0.2")) << result.err;
+    EXPECT_TRUE(contains(result.err, std::to_string(result.records[1].invertedCells) + " inverted cell"))
+        << result.err;
+    EXPECT_TRUE(contains(result.err, "Nothing was written for time 0.2")) << result.err;
+
+    // Apart from the earlier step, the VTK series and the log, the case is as it was.
+    auto after = listing(dir.path());
+    std::erase_if(after, [](const auto& entry) {
+        const std::string& name = entry.first;
+        return name.rfind("0.1", 0) == 0 || name.rfind("VTK", 0) == 0 || name.rfind("postProcessing", 0) == 0;
+    });
+    EXPECT_EQ(after, before);
+    const auto lines = readJsonLines(dir.path() / "postProcessing" / "rbmMoveMesh" / "0" / "log.jsonl");
+    ASSERT_EQ(lines.size(), 2u);
+    EXPECT_GT(lines[1].at("invertedCells").number, 0);
+    EXPECT_FALSE(lines[1].at("written").boolean);
+    expectNoTemporaryFiles(dir.path());
+}
+
+TEST(MoveMeshRun, WriteInvalidWritesTheInvalidStepWithAWarningAndGoesOn)
+{
+    TempDir dir("writeInvalid");
+    Control control;
+    control.deltaT = "0.1";
+    control.writeInterval = "1";
+    writeSquareCase(dir.path(), control, invertingBoundary, "formulation linearized; subSteps 1;");
+    const RunResult result = runCase(dir.path(), true, true);
+    EXPECT_EQ(result.status, app::exitRunFailed) << result.out << result.err;
+    ASSERT_EQ(result.records.size(), 3u);
+    EXPECT_EQ(timeFolders(dir.path()), (std::set<std::string>{"0", "0.1", "0.2", "0.3"}));
+    EXPECT_TRUE(contains(result.err, "WARNING")) << result.err;
+    EXPECT_TRUE(contains(result.err, "writing time 0.2")) << result.err;
+    EXPECT_TRUE(contains(result.out, "INVALID")) << result.out;
+    // What was written is what the solver computed, inverted cells and all.
+    EXPECT_LT(largestDistance(io::readPolyMeshPoints(dir.path() / "0.2"), result.points.at("0.2")), 1e-11);
+    expectNoTemporaryFiles(dir.path());
+}
+
+TEST(MoveMeshRun, VtkFilesHoldTheNodeClassesAndTheCellQualityOfTheStep)
+{
+    // The inverted step written with -writeInvalid: its cell fields must agree with the step's
+    // log figures, which come from the quality report, not from the VTK code.
+    TempDir dir("vtkFields");
+    Control control;
+    control.deltaT = "0.1";
+    control.writeInterval = "1";
+    control.endTime = "0.2";
+    writeSquareCase(dir.path(), control, invertingBoundary, "formulation linearized; subSteps 1;");
+    const RunResult result = runCase(dir.path(), true, true);
+    ASSERT_EQ(result.records.size(), 2u);
+    const std::string caseName = dir.path().filename().string();
+    for (std::size_t k = 0; k < 2; ++k) {
+        const io::StepLogRecord& record = result.records[k];
+        SCOPED_TRACE(record.timeName);
+        vtkNew<vtkXMLUnstructuredGridReader> reader;
+        const fs::path file = dir.path() / "VTK" / (caseName + "_" + record.timeName + ".vtu");
+        reader->SetFileName(file.c_str());
+        reader->Update();
+        vtkUnstructuredGrid* grid = reader->GetOutput();
+        ASSERT_EQ(grid->GetNumberOfCells(), 64);
+        ASSERT_EQ(grid->GetNumberOfPoints(), 162);
+        vtkDataArray* inverted = grid->GetCellData()->GetArray("inverted");
+        vtkDataArray* quality = grid->GetCellData()->GetArray("quality");
+        vtkDataArray* nonOrthogonality = grid->GetCellData()->GetArray("nonOrthogonality");
+        vtkDataArray* nodeClass = grid->GetPointData()->GetArray("nodeClass");
+        vtkDataArray* displacement = grid->GetPointData()->GetArray("pointDisplacement");
+        ASSERT_TRUE(inverted && quality && nonOrthogonality && nodeClass && displacement);
+        double invertedCount = 0.0;
+        double worst = 1e300;
+        double largestAngle = 0.0;
+        for (vtkIdType c = 0; c < 64; ++c) {
+            invertedCount += inverted->GetTuple1(c);
+            worst = std::min(worst, quality->GetTuple1(c));
+            largestAngle = std::max(largestAngle, nonOrthogonality->GetTuple1(c));
+        }
+        EXPECT_EQ(invertedCount, static_cast<double>(record.invertedCells));
+        EXPECT_NEAR(worst, record.worstQuality, 1e-12);
+        EXPECT_NEAR(largestAngle, record.maxNonOrthogonality, 1e-9);
+        // Point labels of makeExtruded2D: i + 9 j on the front plane. (0, 0) is on the left
+        // side (prescribed beats sliding), (1, 0) on the sliding bottom, (1, 1) inside.
+        EXPECT_EQ(nodeClass->GetTuple1(0), 2.0);
+        EXPECT_EQ(nodeClass->GetTuple1(1), 1.0);
+        EXPECT_EQ(nodeClass->GetTuple1(10), 0.0);
+        EXPECT_EQ(nodeClass->GetTuple1(8), 2.0);   // (8, 0): on the fixed right side
+        // The left side's displacement is the table's: (0.05, 0) at 0.1, (2, 0) at 0.2.
+        EXPECT_NEAR(displacement->GetComponent(0, 0), k == 0 ? 0.05 : 2.0, 1e-12);
+        EXPECT_NEAR(grid->GetPoint(0)[0], k == 0 ? 0.05 : 2.0, 1e-12);
+    }
+    EXPECT_EQ(result.records[0].invertedCells, 0);
+    EXPECT_GT(result.records[1].invertedCells, 0);
+}
+
+// Bad input: exit status 2, a message naming the problem, the case exactly as it was.
+struct BadInput {
+    std::string name;
+    std::string expectedMessage;
+    std::function<void(const fs::path&)> spoil;
+};
+
+// GoogleTest prints a parameter with this (the default dumps its bytes into the test name).
+void PrintTo(const BadInput& bad, std::ostream* out) { *out << bad.name; }
+
+class MoveMeshRunBadInput : public ::testing::TestWithParam<BadInput> {};
+
+TEST_P(MoveMeshRunBadInput, ExitsWithTwoAndLeavesTheCaseAsItWas)
+{
+    const BadInput& bad = GetParam();
+    TempDir dir("bad" + bad.name);
+    writeSquareCase(dir.path(), Control{}, pitchingBoundary);
+    bad.spoil(dir.path());
+    const auto before = listing(dir.path());
+    const RunResult result = runCase(dir.path());
+    EXPECT_EQ(result.status, app::exitBadInput) << result.out << result.err;
+    EXPECT_TRUE(contains(result.err, bad.expectedMessage)) << result.err;
+    EXPECT_TRUE(contains(result.err, "Nothing was written")) << result.err;
+    EXPECT_TRUE(result.records.empty());
+    EXPECT_EQ(listing(dir.path()), before);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, MoveMeshRunBadInput,
+    ::testing::Values(
+        BadInput{"DeltaTZero", "deltaT",
+                 [](const fs::path& caseDir) {
+                     Control control;
+                     control.deltaT = "0";
+                     writeText(caseDir / "system" / "controlDict", control.text());
+                 }},
+        BadInput{"UnknownSolver", "Unknown motionSolver type laplacianMotionSolver",
+                 [](const fs::path& caseDir) {
+                     writeText(caseDir / "constant" / "dynamicMeshDict", dynamicMeshDict("", "laplacianMotionSolver"));
+                 }},
+        BadInput{"UnknownPatch", "wing",
+                 [](const fs::path& caseDir) {
+                     writeText(caseDir / "0" / "pointDisplacement",
+                               pointDisplacement(pitchingBoundary + "\n    wing { type fixedValue; value uniform (0 0 0); }"));
+                 }},
+        BadInput{"UnknownCoefficient", "subStep",
+                 [](const fs::path& caseDir) {
+                     writeText(caseDir / "constant" / "dynamicMeshDict", dynamicMeshDict("subStep 4;"));
+                 }},
+        BadInput{"MissingPointDisplacement", "pointDisplacement",
+                 [](const fs::path& caseDir) { fs::remove(caseDir / "0" / "pointDisplacement"); }},
+        BadInput{"MissingDynamicMeshDict", "dynamicMeshDict",
+                 [](const fs::path& caseDir) { fs::remove(caseDir / "constant" / "dynamicMeshDict"); }}),
+    [](const ::testing::TestParamInfo<BadInput>& info) { return info.param.name; });
+
+TEST(MoveMeshRun, RestartFromTheLatestTimeContinuesTheRun)
+{
+    // Run A: 0 → 0.2, then restarted from its latest time to 0.4. Run B: 0 → 0.4 at once.
+    TempDir a("restartA");
+    TempDir b("restartB");
+    Control control;
+    control.deltaT = "0.1";
+    control.writeInterval = "1";
+    control.endTime = "0.2";
+    writeSquareCase(a.path(), control, pitchingBoundary);
+    ASSERT_EQ(runCase(a.path(), false).status, app::exitSuccess);
+    control.startFrom = "latestTime";
+    control.endTime = "0.4";
+    writeText(a.path() / "system" / "controlDict", control.text());
+    const RunResult restarted = runCase(a.path(), false);
+    ASSERT_EQ(restarted.status, app::exitSuccess) << restarted.out << restarted.err;
+    EXPECT_TRUE(contains(restarted.out, "Warm start    : 0.2/pointDisplacement")) << restarted.out;
+    ASSERT_EQ(restarted.records.size(), 2u);
+    EXPECT_EQ(restarted.records[0].timeName, "0.3");
+    EXPECT_EQ(timeFolders(a.path()), (std::set<std::string>{"0", "0.1", "0.2", "0.3", "0.4"}));
+    EXPECT_EQ(readJsonLines(a.path() / "postProcessing" / "rbmMoveMesh" / "0.2" / "log.jsonl").size(), 2u);
+
+    control.startFrom = "startTime";
+    writeSquareCase(b.path(), control, pitchingBoundary);
+    const RunResult straight = runCase(b.path(), false);
+    ASSERT_EQ(straight.status, app::exitSuccess) << straight.out << straight.err;
+    EXPECT_LT(largestDistance(restarted.points.at("0.4"), straight.points.at("0.4")), 1e-9);
+}
+
+TEST(MoveMeshRun, TimeNamesGainDigitsWhenNeededAndConditionsComeFromTheEarliestField)
+{
+    // startTime 1 has no folder: the boundary conditions come from 0/pointDisplacement. With
+    // deltaT 1e-7, 1.0000001 has the 6-digit name "1" (|1 − 1.0000001| = 1e-7 is more than
+    // OpenFOAM's tolerance max(min(1e-6, 0.1 deltaT), 1e-15) = 1e-8), 7 digits still give "1",
+    // 8 give "1.0000001": OpenFOAM raises timePrecision to 8.
+    TempDir dir("precision");
+    Control control;
+    control.startTime = "1";
+    control.endTime = "1.0000002";
+    control.deltaT = "1e-07";
+    control.writeInterval = "1";
+    writeSquareCase(dir.path(), control, pitchingBoundary);
+    const RunResult result = runCase(dir.path(), false);
+    ASSERT_EQ(result.status, app::exitSuccess) << result.out << result.err;
+    EXPECT_TRUE(contains(result.out, "Boundary      : 0/pointDisplacement")) << result.out;
+    EXPECT_TRUE(contains(result.err, "Increased the timePrecision from 6 to 8")) << result.err;
+    EXPECT_EQ(timeFolders(dir.path()), (std::set<std::string>{"0", "1.0000001", "1.0000002"}));
+    EXPECT_TRUE(fs::exists(dir.path() / "postProcessing" / "rbmMoveMesh" / "1" / "log.jsonl"));
+}
+
+TEST(MoveMeshRun, ParallelOptionOnOneProcessRunsNormally)
+{
+    TempDir dir("parallel");
+    Control control;
+    control.endTime = "0.05";
+    writeSquareCase(dir.path(), control, pitchingBoundary);
+    const std::string caseArgument = dir.path().string();
+    const char* argv[] = {"rbmMoveMesh", "-parallel", "-noVTK", "-case", caseArgument.c_str(), nullptr};
+    std::ostringstream out;
+    std::ostringstream err;
+    EXPECT_EQ(app::moveMeshMain(5, const_cast<char**>(argv), out, err), app::exitSuccess) << out.str() << err.str();
+    EXPECT_TRUE(contains(out.str(), "Time = 0.05 ")) << out.str();
+}
+
+} // namespace
