@@ -1,5 +1,7 @@
 #include "CoupledNewtonSolver.hpp"
 
+#include <limits>
+
 #include "LocalGlobalSolver.hpp"
 #include "RbmEnergy.hpp"
 
@@ -247,24 +249,38 @@ RbmResult CoupledNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
     problem_.checkNodeArray(prescribedDisplacement, "prescribed displacement");
     if (problem_.unknownNodeCount() == 0) return prescribedOnlyResult(problem_, prescribedDisplacement);
     RbmResult result;
-    std::vector<double> start(problem_.unknownCount(), 0.0);
+    if (!linearized_) {
+        CoupledLinearizedOptions linearOptions;
+        linearOptions.linearSolver = options_.linearSolver;
+        linearized_ = std::make_unique<CoupledLinearizedSolver>(problem_, linearOptions);
+    }
+    BlockSystemSolver::Report report;
+    std::vector<std::vector<double>> candidateStarts;
+    // Cold start: the linearized solution (one solve with the factorisation kept).
+    std::vector<double> coldStart = linearized_->solveUnknowns(prescribedDisplacement, nullptr, report);
+    result.linearIterations += report.iterations;
     if (initialGuess) {
-        // Warm start, moved onto the sliding planes: u ← c n + P (u − c n).
-        packUnknowns(problem_, *initialGuess, start);
-        std::vector<double> offset(start.size());
-        problem_.slidingOffset(prescribedDisplacement, offset);
-        for (std::size_t k = 0; k < start.size(); ++k) start[k] -= offset[k];
-        problem_.projectSliding(start);
-        for (std::size_t k = 0; k < start.size(); ++k) start[k] += offset[k];
-    } else {
-        if (!linearized_) {
-            CoupledLinearizedOptions linearOptions;
-            linearOptions.linearSolver = options_.linearSolver;
-            linearized_ = std::make_unique<CoupledLinearizedSolver>(problem_, linearOptions);
-        }
-        BlockSystemSolver::Report report;
-        start = linearized_->solveUnknowns(prescribedDisplacement, nullptr, report);
+        // Warm start from the previous time step, with a linear predictor for the change of
+        // the boundary: guess + L⁻¹b(new) − L⁻¹b(old). Without it the boundary nodes jump
+        // by the whole increment while their neighbours stay, which on boundary-layer cells
+        // thinner than the increment is a tangled start and costs Newton tens of iterations.
+        std::vector<Vector3> previousBoundary(initialGuess->displacement.begin(), initialGuess->displacement.end());
+        const std::vector<double> previousLinear = linearized_->solveUnknowns(previousBoundary, nullptr, report);
         result.linearIterations += report.iterations;
+        std::vector<double> warm(problem_.unknownCount(), 0.0);
+        packUnknowns(problem_, *initialGuess, warm);
+        for (std::size_t k = 0; k < warm.size(); ++k) warm[k] += coldStart[k] - previousLinear[k];
+        // Moved onto the sliding planes: u ← c n + P (u − c n).
+        std::vector<double> offset(warm.size());
+        problem_.slidingOffset(prescribedDisplacement, offset);
+        for (std::size_t k = 0; k < warm.size(); ++k) warm[k] -= offset[k];
+        problem_.projectSliding(warm);
+        for (std::size_t k = 0; k < warm.size(); ++k) warm[k] += offset[k];
+        // Whichever start has the lower energy (both with re-fitted rotations, below).
+        candidateStarts.push_back(std::move(coldStart));
+        candidateStarts.push_back(std::move(warm));
+    } else {
+        candidateStarts.push_back(std::move(coldStart));
     }
 
     context_->energy.emplace(problem_, RotationModel::exact, prescribedDisplacement);
@@ -295,7 +311,17 @@ RbmResult CoupledNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
         }
         return largest;
     };
-    largestRotationMismatch(start);
+    // Rotations re-fitted to each candidate's displacements; Newton starts from the lowest energy.
+    double lowestEnergy = std::numeric_limits<double>::infinity();
+    std::vector<double> start;
+    for (std::vector<double>& candidate : candidateStarts) {
+        largestRotationMismatch(candidate);
+        const double energy = context_->energy->value(candidate);
+        if (energy < lowestEnergy) {
+            lowestEnergy = energy;
+            start = candidate;
+        }
+    }
 
     constexpr int maximumRestarts = 3;
     int restarts = 0;

@@ -646,6 +646,33 @@ TEST(CoupledSolvers, NewtonAndLocalGlobalReachTheSameEnergyOnTheRotatedSquares)
     EXPECT_LT(largest, 1e-7 * 10.0);
 }
 
+TEST(CoupledSolvers, WarmStartedNewtonFollowsATimeSeriesInFewIterations)
+{
+    // A pitching-like series: the hole turns 2°, 4°, ... 20°, each step warm-started from
+    // the previous one (as rbmMoveMesh does). The linear predictor for the boundary change
+    // must keep Newton at a few iterations per step, and every step must reach the same
+    // minimum as a cold solve of that step.
+    const SquaresCase reference = squaresCase(31, 6, 0.0);
+    const RbmProblem problem(2, reference.mesh.points, reference.mesh.graph, reference.constraints,
+                             EdgeWeighting::inverseDistanceSquared);
+    CoupledNewtonSolver warm(problem);
+    CoupledNewtonSolver cold(problem);
+    RbmResult previous;
+    for (int step = 1; step <= 10; ++step) {
+        const SquaresCase c = squaresCase(31, 6, degrees(2.0 * step));
+        const RbmResult result = warm.solve(c.prescribed, step > 1 ? &previous : nullptr);
+        ASSERT_TRUE(result.converged) << "step " << step << ": " << result.reason;
+        EXPECT_LE(result.iterations, 3) << "step " << step;
+        const RbmResult fromScratch = cold.solve(c.prescribed);
+        EXPECT_NEAR(result.energy, fromScratch.energy, 1e-9 * fromScratch.energy) << "step " << step;
+        double largest = 0.0;
+        for (std::size_t node = 0; node < c.mesh.points.size(); ++node)
+            largest = std::max(largest, norm(result.displacement[node] - fromScratch.displacement[node]));
+        EXPECT_LT(largest, 1e-7 * 10.0) << "step " << step;
+        previous = result;
+    }
+}
+
 TEST(CoupledSolvers, ThesisRotatingSquaresReachTheMeasuredEnergy)
 {
     // Full size (§3.1: 101 × 101 nodes, 20-cell hole, 9360 free nodes), 10°, uniform
