@@ -473,7 +473,7 @@ std::vector<Vector3> readPatchVectorField(const io::Dictionary& patchDictionary,
                     stream.fail("expected List<vector> after nonuniform in '" + std::string(keyword) + "' of " +
                                 patchWhere(context) + ", found " + listType);
             }
-            values = stream.readVectorList();
+            values = stream.readVectorList(count);   // bounded: no allocation beyond the patch size
             if (values.size() != count)
                 stream.fail("'" + std::string(keyword) + "' of " + patchWhere(context) + " holds " +
                             std::to_string(values.size()) + " vectors but the patch has " + std::to_string(count) +

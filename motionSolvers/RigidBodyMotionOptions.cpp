@@ -92,7 +92,7 @@ StiffeningOptions readStiffening(const io::Entry& entry)
     if (word != "inverseDistance")
         failAt(entry, "invalid stiffening '" + word + "'; valid forms are: " + valid);
     if (stream.atEnd()) failAt(entry, "'stiffening " + word + "' needs a list of patches, e.g. (airfoil)");
-    stiffening.patches = stream.readWordList();
+    stiffening.patches = stream.readWordList(100000);   // bounded: a huge count is an error, not an allocation
     if (stiffening.patches.empty()) failAt(entry, "'stiffening' lists no patch");
     if (!stream.atEnd()) failAt(entry, "unexpected '" + stream.peek().text + "' after the patch list of 'stiffening'");
     return stiffening;
