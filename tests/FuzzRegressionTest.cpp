@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <chrono>
 #include <fstream>
@@ -166,7 +168,11 @@ const rbm::PolyMesh& pointFieldMesh()
 fs::path pointFieldMeshWith(const std::string& file, const std::string& text)
 {
     const fs::path source = fs::path(RBM_TEST_DATA_DIR) / "dictionaries" / "pointField" / "ascii" / "constant" / "polyMesh";
-    const fs::path folder = fs::path(testing::TempDir()) / "rbmFuzzRegressionTestMesh";
+    // One folder per test and process: ctest runs the tests of this file in parallel.
+    const ::testing::TestInfo* test = ::testing::UnitTest::GetInstance()->current_test_info();
+    const fs::path folder = fs::path(testing::TempDir()) /
+                            ("rbmFuzzRegressionTestMesh-" + std::string(test ? test->name() : "none") + "-" +
+                             std::to_string(::getpid()));
     fs::remove_all(folder);
     fs::create_directories(folder);
     for (const auto& entry : fs::directory_iterator(source)) fs::copy_file(entry.path(), folder / entry.path().filename());
