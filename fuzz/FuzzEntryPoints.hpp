@@ -12,15 +12,17 @@
 //
 // Files the readers need on disk go to a private temporary folder (the sandbox), created
 // once per process and removed at normal exit. The dictionary parser sees its input as
-// <sandbox>/case/system/fuzzDict: relative `#include`s resolve inside the empty sandbox and
-// `<case>` expands to <sandbox>/case. Absolute includes still reach the real file system; the
-// reader refuses anything but regular files (devices such as /dev/zero, FIFOs, directories).
+// <sandbox>/case/system/fuzzDict: relative `#include`s resolve inside the sandbox (which holds
+// a few files to include, see Sandbox) and `<case>` expands to <sandbox>/case. Absolute
+// includes still reach the real file system, as in OpenFOAM; the reader refuses anything but
+// regular files (folders, devices such as /dev/zero, FIFOs, sockets).
 
 #include "CompressedFile.hpp"
 #include "FoamDictionary.hpp"
 #include "FoamDictionaryWriter.hpp"
 #include "FoamListIO.hpp"
 #include "InputError.hpp"
+#include "MeshTopology.hpp"
 #include "PointVectorField.hpp"
 #include "PolyMesh.hpp"
 #include "PolyMeshReader.hpp"
@@ -69,9 +71,9 @@ private:
         std::string pattern = (std::filesystem::temp_directory_path() / "rbm-fuzz-XXXXXX").string();
         if (::mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("cannot create a temporary folder " + pattern);
         root_ = pattern;
-        // Files a dictionary input may include by a relative name ("includeDict",
-        // "sub/loopA", "$FOAM_CASE/constant/header"): a few successful includes,
-        // nested ones, a loop, a file with its own header and a gzip one.
+        // Files a dictionary input may include ("includeDict", "sub/loopA", "zipped",
+        // "<case>/constant/header"): successful includes, a nested one, a loop, a file with
+        // its own (binary, 64-bit label) header and a gzip one.
         const std::filesystem::path system = root_ / "case" / "system";
         std::filesystem::create_directories(system / "sub");
         std::filesystem::create_directories(root_ / "case" / "constant");
@@ -324,7 +326,8 @@ inline void checkPolyMesh(const PolyMesh& mesh)
 
 // A whole polyMesh folder: the input is split at polyMeshFileSeparator into the files
 // points, faces, owner, neighbour, boundary (then pointZones, faceZones, cellZones), written
-// to an empty folder that readPolyMesh reads.
+// to an empty folder that readPolyMesh reads; a mesh it accepts then goes through the
+// topology code every program runs next.
 inline void readPolyMeshFolder(std::string_view bytes)
 {
     const std::filesystem::path folder = detail::freshFolder("polyMesh");
@@ -335,7 +338,13 @@ inline void readPolyMeshFolder(std::string_view bytes)
         if (end == std::string_view::npos) break;
         start = end + polyMeshFileSeparator.size();
     }
-    checkPolyMesh(io::readPolyMesh(folder));
+    const PolyMesh mesh = io::readPolyMesh(folder);
+    checkPolyMesh(mesh);
+    // What the programs do next with a mesh they have read (rbmCheckMesh, rbmMoveMesh): the
+    // cell connectivity, and the check of OpenFOAM's ordering and closed cells. They may
+    // reject the mesh with an InputError, but must not fail otherwise.
+    (void)buildMeshTopology(mesh);
+    (void)checkPolyMeshOrdering(mesh);
 }
 
 } // namespace rbm::fuzz

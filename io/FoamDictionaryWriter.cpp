@@ -140,6 +140,17 @@ Token punctuationToken(char c)
     return token;
 }
 
+// True when `word` has more '(' than ')' (the tokenizer keeps balanced parentheses in words).
+bool leavesParenthesisOpen(std::string_view word)
+{
+    int depth = 0;
+    for (char c : word) {
+        if (c == '(') ++depth;
+        if (c == ')' && depth > 0) --depth;
+    }
+    return depth > 0;
+}
+
 } // namespace
 
 bool keywordNeedsQuotes(std::string_view keyword)
@@ -174,7 +185,11 @@ void appendTokens(std::string& out, const std::vector<Token>& tokens, int precis
     bool first = true;
     for (std::size_t i = 0; i < tokens.size(); ++i) {
         const Token& token = tokens[i];
-        const bool closing = token.isPunctuation(')') || token.isPunctuation(']');
+        // No space before ')' or ']', unless the previous token is a word with an unclosed '('
+        // ("b(" from `(b( )`): written as `b()`, the word would swallow the ')' when read
+        // again (found by fuzzing).
+        const bool closing = (token.isPunctuation(')') || token.isPunctuation(']')) &&
+                             !(i > 0 && tokens[i - 1].kind == Token::Kind::Word && leavesParenthesisOpen(tokens[i - 1].text));
         const bool afterOpening = i > 0 && (tokens[i - 1].isPunctuation('(') || tokens[i - 1].isPunctuation('['));
         const bool afterMultiLineList = !out.empty() && out.back() == '\n';
         if (!first && !closing && !afterOpening && !afterMultiLineList && token.kind != Token::Kind::Binary) out += ' ';

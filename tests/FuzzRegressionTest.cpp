@@ -144,6 +144,20 @@ TEST(FuzzFindings, WriterQuotesKeywordsOnlyWhenTheyMustBeQuoted)
     EXPECT_EQ(reparsed.get<rbm::Label>("a//b"), 4);
 }
 
+// Finding 11: the writer puts no space before ')'; after a word with an unclosed '(' ("b("
+// from `(b( )`) the word swallowed the ')' when read again, leaving the list unclosed.
+TEST(FuzzFindings, WriterKeepsTheClosingParenthesisApartFromAWordThatOpensOne)
+{
+    const rbm::io::Dictionary parsed = rbm::io::Dictionary::parseText("a (b( );\nc (div(phi,U) x);\n", "words");
+    std::string written;
+    rbm::io::appendDictionaryEntries(written, parsed, 0, 6);
+    EXPECT_NE(written.find("(b( )"), std::string::npos) << written;
+    EXPECT_NE(written.find("(div(phi,U) x)"), std::string::npos) << written;   // balanced words keep the compact form
+    const rbm::io::Dictionary reparsed = rbm::io::Dictionary::parseText(written, "written");
+    EXPECT_EQ(reparsed.lookup("a").valueText(), parsed.lookup("a").valueText());
+    EXPECT_EQ(reparsed.lookup("c").valueText(), parsed.lookup("c").valueText());
+}
+
 namespace {
 
 // A dictionary file `name` with `text` in a fresh scratch folder.
