@@ -99,7 +99,8 @@ struct CheckMeshQuality {
     // The number of plain checkMesh geometry checks that fail ("Failed N mesh checks."):
     // closed boundary, closed cells (open cells or aspect ratio above 1000), face areas,
     // cell volumes, non-orthogonality errors (> 90°), face pyramids, skewness (> 4).
-    // The 2D edge-alignment check is not implemented.
+    // checkMesh's 2D edge-alignment check is not among them: rbm keeps the out-of-plane
+    // coordinates of a 2D case unchanged, so a motion cannot misalign those edges.
     int failedCheckCount() const;
     // Failures that make the mesh unusable (as opposed to checkMesh's warnings about
     // aspect ratio and skewness): open cells, zero areas, non-positive volumes, faces
