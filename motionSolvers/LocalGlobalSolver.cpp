@@ -161,7 +161,26 @@ void fitNodeRotations(const RbmProblem& problem, std::span<const Vector3> displa
                     for (int c = 0; c < 3; ++c) covariance.m[r][c] += w * current[r] * d[c];
             }
         }
-        rotations[i] = planar ? planarRotation(bestPlanarAngle(crossSum, dotSum)) : bestRotation(covariance);
+        if (planar) {
+            rotations[i] = planarRotation(bestPlanarAngle(crossSum, dotSum));
+        } else if (problem.rotatesAboutNormalOnly(i)) {
+            // Mirror-plane node: the best rotation about the normal n alone. Only the parts of
+            // d and e normal to n turn, so it is the planar fit of those parts:
+            // θ = atan2(Σ w n·(d × e), Σ w (d·e − (d·n)(e·n))), from Σ w e dᵀ.
+            const Vector3& n = problem.slidingNormal(i);
+            double sine = 0.0, cosine = 0.0;
+            for (int r = 0; r < 3; ++r) {
+                for (int c = 0; c < 3; ++c) {
+                    cosine += covariance.m[r][c] * ((r == c ? 1.0 : 0.0) - n[r] * n[c]);
+                    // n·(d × e) = Σ n_k ε_kcr d_c e_r
+                    const int k = 3 - r - c;
+                    if (r != c) sine += covariance.m[r][c] * n[k] * ((c + 1) % 3 == r ? 1.0 : -1.0);
+                }
+            }
+            rotations[i] = rotationFromVector(bestPlanarAngle(sine, cosine) * n);
+        } else {
+            rotations[i] = bestRotation(covariance);
+        }
     }
 }
 

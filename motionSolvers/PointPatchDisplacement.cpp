@@ -195,9 +195,11 @@ class Sliding final : public PointPatchDisplacement {
 public:
     // One normal per patch point, or a single normal for all.
     Sliding(const PointPatchContext& context, std::string type, std::vector<Vector3> normals)
-        : PointPatchDisplacement(context, std::move(type)), normals_(std::move(normals))
+        : PointPatchDisplacement(context, std::move(type)), normals_(std::move(normals)),
+          isMirror_(this->type() == "symmetry" || this->type() == "symmetryPlane")
     {}
     PatchNodeClass nodeClass() const override { return PatchNodeClass::sliding; }
+    bool isMirrorPlane() const override { return isMirror_; }
     Vector3 slidingNormal(Label patchPoint) const override
     {
         return normals_.size() == 1 ? normals_.front() : normals_.at(static_cast<std::size_t>(patchPoint));
@@ -205,6 +207,7 @@ public:
 
 private:
     std::vector<Vector3> normals_;
+    bool isMirror_;
 };
 
 std::unique_ptr<PointPatchDisplacement> makePointNormalSliding(const PointPatchContext& context, std::string type)

@@ -145,6 +145,9 @@ public:
 
     // Sliding types: unit normal of the plane patch point i slides on. Others throw std::logic_error.
     virtual Vector3 slidingNormal(Label patchPoint) const;
+    // Sliding types: true when the plane is a mirror of the mesh (symmetry, symmetryPlane),
+    // so that a point on it may turn only about the normal; false for slip-type walls.
+    virtual bool isMirrorPlane() const { return false; }
 
 private:
     std::string patchName_;

@@ -265,6 +265,7 @@ double RbmProblem::shortestNeighbourDistance(int node) const
 void RbmProblem::projectSliding(std::span<double> blockVector, int bs) const
 {
     if (slidingNodeCount_ == 0) return;
+    const bool hasRotations = bs == blockSize();
     for (int a = 0; a < unknownNodeCount(); ++a) {
         const int node = unknownNodes_[a];
         if (constraints_[node].kind != NodeKind::sliding) continue;
@@ -273,6 +274,12 @@ void RbmProblem::projectSliding(std::span<double> blockVector, int bs) const
         double normalPart = 0.0;
         for (int k = 0; k < dimension_; ++k) normalPart += u[k] * n[k];
         for (int k = 0; k < dimension_; ++k) u[k] -= normalPart * n[k];
+        if (hasRotations && rotatesAboutNormalOnly(node)) {
+            double* omega = u + 3;
+            double along = 0.0;
+            for (int k = 0; k < 3; ++k) along += omega[k] * n[k];
+            for (int k = 0; k < 3; ++k) omega[k] = along * n[k];
+        }
     }
 }
 
@@ -296,43 +303,76 @@ void RbmProblem::projectSlidingBlocks(std::span<double> blockValues, int bs) con
 {
     if (slidingNodeCount_ == 0) return;
     const int dim = dimension_;
+    const bool hasRotations = bs == blockSize();
     const std::size_t area = static_cast<std::size_t>(bs) * bs;
-    auto normalOf = [this](int unknown) -> const Vector3* {
+    // A sliding node's projector P is block diagonal: I − n nᵀ on the displacement and, for
+    // a mirror node with rotations in the system, n nᵀ on the rotation (identity otherwise).
+    // project(v) applies P to a strided vector of bs entries.
+    struct NodeProjector {
+        const Vector3* normal = nullptr;
+        bool rotationToo = false;
+        void apply(double* v, int stride) const
+        {
+            const Vector3& n = *normal;
+            double normalPart = 0.0;
+            for (int q = 0; q < 3; ++q) normalPart += n[q] * v[q * stride];
+            for (int q = 0; q < 3; ++q) v[q * stride] -= normalPart * n[q];
+            if (!rotationToo) return;
+            double along = 0.0;
+            for (int q = 0; q < 3; ++q) along += n[q] * v[(3 + q) * stride];
+            for (int q = 0; q < 3; ++q) v[(3 + q) * stride] = along * n[q];
+        }
+    };
+    auto projectorOf = [&](int unknown) {
         const int node = unknownNodes_[unknown];
-        return constraints_[node].kind == NodeKind::sliding ? &unitNormals_[node] : nullptr;
+        NodeProjector projector;
+        if (constraints_[node].kind != NodeKind::sliding) return projector;
+        projector.normal = &unitNormals_[node];
+        projector.rotationToo = hasRotations && rotatesAboutNormalOnly(node);
+        return projector;
     };
     for (int a = 0; a < unknownNodeCount(); ++a) {
-        const Vector3* rowNormal = normalOf(a);
+        const NodeProjector rowProjector = projectorOf(a);
         for (int position = blockPattern_.rowOffsets[a]; position < blockPattern_.rowOffsets[a + 1]; ++position) {
-            const Vector3* columnNormal = normalOf(blockPattern_.columns[position]);
-            if (!rowNormal && !columnNormal) continue;
+            const NodeProjector columnProjector = projectorOf(blockPattern_.columns[position]);
+            if (!rowProjector.normal && !columnProjector.normal) continue;
             double* block = blockValues.data() + area * position;
             const bool isDiagonal = position == blockPattern_.diagonal[a];
-            double scale = 0.0;
+            // s: the mean diagonal of the displacement part and of the rotation part, so the
+            // added s (I − P) has the scale of the block it fills.
+            double displacementScale = 0.0, rotationScale = 0.0;
             if (isDiagonal) {
-                for (int q = 0; q < dim; ++q) scale += block[q * bs + q];
-                scale /= dim;
-            }
-            if (rowNormal) {  // P_a H: project every column's displacement rows
-                const Vector3& n = *rowNormal;
-                for (int column = 0; column < bs; ++column) {
-                    double normalPart = 0.0;
-                    for (int q = 0; q < dim; ++q) normalPart += n[q] * block[q * bs + column];
-                    for (int q = 0; q < dim; ++q) block[q * bs + column] -= normalPart * n[q];
+                for (int q = 0; q < dim; ++q) displacementScale += block[q * bs + q];
+                displacementScale /= dim;
+                if (rowProjector.rotationToo) {
+                    for (int q = 3; q < 6; ++q) rotationScale += block[q * bs + q];
+                    rotationScale /= 3.0;
                 }
             }
-            if (columnNormal) {  // H P_b: project every row's displacement columns
-                const Vector3& n = *columnNormal;
-                for (int row = 0; row < bs; ++row) {
-                    double normalPart = 0.0;
-                    for (int q = 0; q < dim; ++q) normalPart += n[q] * block[row * bs + q];
-                    for (int q = 0; q < dim; ++q) block[row * bs + q] -= normalPart * n[q];
-                }
+            if (dim == 2) {  // the projector above is written for 3D; 2D only projects displacements
+                auto project2D = [&](const Vector3& n, double* v, int stride) {
+                    const double normalPart = n.x * v[0] + n.y * v[stride];
+                    v[0] -= normalPart * n.x;
+                    v[stride] -= normalPart * n.y;
+                };
+                if (rowProjector.normal)
+                    for (int column = 0; column < bs; ++column) project2D(*rowProjector.normal, block + column, bs);
+                if (columnProjector.normal)
+                    for (int row = 0; row < bs; ++row) project2D(*columnProjector.normal, block + row * bs, 1);
+            } else {
+                if (rowProjector.normal)  // P_a H: project every column
+                    for (int column = 0; column < bs; ++column) rowProjector.apply(block + column, bs);
+                if (columnProjector.normal)  // H P_b: project every row
+                    for (int row = 0; row < bs; ++row) columnProjector.apply(block + row * bs, 1);
             }
             if (isDiagonal) {
-                const Vector3& n = *rowNormal;
+                const Vector3& n = *rowProjector.normal;
                 for (int p = 0; p < dim; ++p)
-                    for (int q = 0; q < dim; ++q) block[p * bs + q] += scale * n[p] * n[q];
+                    for (int q = 0; q < dim; ++q) block[p * bs + q] += displacementScale * n[p] * n[q];
+                if (rowProjector.rotationToo)
+                    for (int p = 0; p < 3; ++p)
+                        for (int q = 0; q < 3; ++q)
+                            block[(3 + p) * bs + 3 + q] += rotationScale * ((p == q ? 1.0 : 0.0) - n[p] * n[q]);
             }
         }
     }

@@ -40,6 +40,7 @@ enum class NodeKind : std::uint8_t {
 struct NodeConstraint {
     NodeKind kind = NodeKind::free;
     Vector3 normal{};  // sliding only: normal of the plane (need not be unit length; 2D uses x, y)
+    bool mirror = false;  // sliding only: a mirror (symmetry) plane; in 3D the rotation is held to the normal
 };
 
 // Edge weights w_ij (DESIGN.md §1): the thesis uses uniform; 1/|d|² makes every
@@ -111,6 +112,12 @@ public:
     const std::vector<double>& edgeWeightFactors() const { return edgeWeightFactors_; }
     // Unit normal of a sliding node (zero vector for other nodes), in the problem's dimension.
     const Vector3& slidingNormal(int node) const { return unitNormals_[node]; }
+    // True for a sliding node on a mirror plane in 3D: its rotation vector must stay along
+    // slidingNormal(node) (see the header comment).
+    bool rotatesAboutNormalOnly(int node) const
+    {
+        return dimension_ == 3 && constraints_[node].kind == NodeKind::sliding && constraints_[node].mirror;
+    }
 
     // Node → unknown index (−1 for prescribed nodes) and unknown index → node.
     const std::vector<int>& unknownIndex() const { return unknownIndex_; }
@@ -131,8 +138,9 @@ public:
     // Sliding constraint in the unknown space. A block vector has blockSize entries per
     // unknown node with the displacement first (blockSize() for the coupled unknowns,
     // dimension() for displacement-only systems). projectSliding removes the normal
-    // component of every sliding node's displacement (P = I − n nᵀ); rotation parts and
-    // free nodes are untouched.
+    // component of every sliding node's displacement (P = I − n nᵀ) and, when the vector
+    // holds rotations (blockSize == blockSize()), the in-plane components of a mirror node's
+    // rotation (P = n nᵀ there); other rotations and free nodes are untouched.
     void projectSliding(std::span<double> blockVector, int blockSize) const;
     void projectSliding(std::span<double> blockVector) const { projectSliding(blockVector, blockSize()); }
     // The same projection on a matrix in blockPattern() order: H ← P H P + s (I − P), with

@@ -387,8 +387,10 @@ void RigidBodyMotionSolver::Impl::updateProblem()
             if (!(length > 1e-8)) continue;  // a plane parallel to the 2D plane: no in-plane constraint
             normal /= length;
             if (constraint.kind == NodeKind::free) {
-                constraint = {NodeKind::sliding, normal};
-            } else if (norm(cross(constraint.normal, normal)) > 1e-6) {
+                constraint = {NodeKind::sliding, normal, condition.isMirrorPlane()};
+            } else if (norm(cross(constraint.normal, normal)) <= 1e-6) {
+                constraint.mirror = constraint.mirror || condition.isMirrorPlane();  // a mirror on the same plane
+            } else {
                 // Two different planes: one plane per node is all the core offers, so hold it.
                 constraint = {NodeKind::prescribed, {}};
                 prescriber[node] = heldNode;
@@ -406,6 +408,7 @@ void RigidBodyMotionSolver::Impl::updateProblem()
     bool changed = !problem || classes.size() != constraints.size();
     for (int node = 0; !changed && node < n; ++node)
         changed = classes[node].kind != constraints[node].kind || !(classes[node].normal == constraints[node].normal) ||
+                  classes[node].mirror != constraints[node].mirror ||
                   prescriber[node] != prescribingPatch[node];
     if (!changed) return;
 

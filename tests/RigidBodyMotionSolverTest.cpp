@@ -610,13 +610,20 @@ struct TwoAndThreeD {
     double largestDisplacement = 0.0;
 };
 
-TwoAndThreeD compareTwoAndThreeD(const std::string& coefficients)
+TwoAndThreeD compareTwoAndThreeD(const std::string& coefficients, const std::string& planeType = "symmetryPlane")
 {
     const PolyMesh flat = squaresMesh(12, 4, 1.0);
-    const PolyMesh layer = squaresMesh(12, 4, 1.0, "symmetryPlane", true);
+    const PolyMesh layer = squaresMesh(12, 4, 1.0, planeType == "slip" ? "patch" : planeType, true);
+    const io::Dictionary slipField = parse(R"field(
+        boundaryField
+        {
+            ".*" { type fixedValue; value uniform (0 0 0); }
+            "(front|back)" { type slip; }  // the later pattern wins, as in OpenFOAM
+        })field", "0/pointDisplacement");
     const RigidMotion turn{{0, 0, 1}, degrees(20.0), {6.0, 6.0, 0.0}, {0.3, 0.1, 0.0}};
     auto solve = [&](const PolyMesh& mesh) {
-        auto solver = makeSolver(mesh, "weighting uniform; " + coefficients);
+        const bool slip = planeType == "slip" && &mesh == &layer;
+        auto solver = makeSolver(mesh, "weighting uniform; " + coefficients, slip ? &slipField : nullptr);
         solver->setPatchDisplacement("inner",
                                      patchDisplacement(*solver, "inner", [&](const Vector3& x) { return turn.displacement(x); }));
         const MotionSolveReport report = solver->solve();
@@ -637,24 +644,32 @@ TwoAndThreeD compareTwoAndThreeD(const std::string& coefficients)
     return result;
 }
 
-TEST(RigidBodyMotionSolverTwoD, DecoupledPseudoTwoDEqualsOneLayerThreeDWithSymmetryPlanes)
+// Every variant: the 3D nodes on the symmetry planes may only turn about the plane normal
+// (a mirror flips in-plane rotation components), which makes the one-layer solve the 2D one.
+// Before that restriction the coupled variants differed by 1.4 % of a cell.
+TEST(RigidBodyMotionSolverTwoD, PseudoTwoDEqualsOneLayerThreeDWithSymmetryPlanes)
 {
-    for (const std::string coefficients : {"coupling decoupled;", "coupling decoupled; formulation linearized; subSteps 1;"}) {
+    for (const std::string coefficients :
+         {"", "formulation linearized; subSteps 1;", "algorithm localGlobal;", "coupling decoupled;",
+          "coupling decoupled; formulation linearized; subSteps 1;"}) {
         const TwoAndThreeD comparison = compareTwoAndThreeD(coefficients);
-        EXPECT_GT(comparison.largestDisplacement, 0.5);
+        EXPECT_GT(comparison.largestDisplacement, 0.5) << coefficients;
         EXPECT_LT(comparison.largestDifference, 1e-8 * 12.0) << coefficients;
     }
 }
 
-TEST(RigidBodyMotionSolverTwoD, DISABLED_MeasureCoupledPseudoTwoDAgainstOneLayerThreeD)
+// A slip wall is not a mirror: its nodes keep all three rotation components, so the same
+// one-layer case with slip planes is allowed to differ from 2D (it does, by 1.4 % of a
+// cell), which shows that the restriction above is what makes the two agree.
+TEST(RigidBodyMotionSolverTwoD, SlipPlanesAreNotMirrorsAndLetTheNodesTilt)
 {
-    for (const std::string coefficients : {"", "formulation linearized; subSteps 1;"}) {
-        const TwoAndThreeD comparison = compareTwoAndThreeD(coefficients);
-        std::printf("coupled %-40s largest in-plane difference %.6g (largest displacement %.6g)\n", coefficients.c_str(),
-                    comparison.largestDifference, comparison.largestDisplacement);
-    }
+    const TwoAndThreeD comparison = compareTwoAndThreeD("", "slip");
+    EXPECT_GT(comparison.largestDifference, 5e-3);  // measured 0.0145 (cells of size 1)
+    EXPECT_LT(comparison.largestDifference, 0.05);
+    // The decoupled variant fits each node's rotation to its neighbours, and the symmetric
+    // neighbourhood already gives a rotation about the normal.
+    EXPECT_LT(compareTwoAndThreeD("coupling decoupled;", "slip").largestDifference, 1e-8 * 12.0);
 }
-
 
 TEST(RigidBodyMotionSolverTwoD, WedgeCaseMovesBothPlanesAndKeepsTheTwinsOnTheirPlanes)
 {
