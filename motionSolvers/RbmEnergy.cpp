@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace rbm::motion {
@@ -341,6 +342,26 @@ double RbmEnergy::projectedGradientNorm(std::span<const double> unknowns) const
     double sum = 0.0;
     for (double value : g) sum += value * value;
     return std::sqrt(sum);
+}
+
+double RbmEnergy::gradientRoundoffNorm(std::span<const double> unknowns) const
+{
+    const RbmState state = unpackUnknowns(problem_, prescribed_, unknowns);
+    const CellNeighbourGraph& graph = problem_.graph();
+    const std::vector<Vector3>& x = problem_.referencePoints();
+    const bool planar = problem_.dimension() == 2;
+    double sum = 0.0;
+    for (int i : problem_.unknownNodes()) {
+        double magnitude = 0.0;
+        for (int e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e) {
+            const int j = graph.neighbours[e];
+            Vector3 d = x[j] - x[i];
+            if (planar) d.z = 0.0;
+            magnitude += problem_.edgeWeights()[e] * (norm(state.displacement[i]) + norm(state.displacement[j]) + norm(d));
+        }
+        sum += problem_.dimension() * magnitude * magnitude;
+    }
+    return std::numeric_limits<double>::epsilon() * std::sqrt(sum);
 }
 
 } // namespace rbm::motion

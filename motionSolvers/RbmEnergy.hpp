@@ -105,6 +105,13 @@ public:
     // Euclidean norm of the sliding-projected gradient P∇E at unknowns (first-order optimality).
     double projectedGradientNorm(std::span<const double> unknowns) const;
 
+    // The size of the rounding error in ∇E at unknowns: ε Σ_j w_ij (|u_i| + |u_j| + |d_ij|)
+    // per displacement row (r_ij is formed from u_j − u_i and d_ij, each rounded to ε times
+    // its magnitude), in the Euclidean norm. A gradient this small is zero as far as double
+    // precision can tell; Newton stops near it instead of iterating on rounding noise (on a
+    // boundary-layer mesh with 1/|d|² weights it is far above any fixed absolute tolerance).
+    double gradientRoundoffNorm(std::span<const double> unknowns) const;
+
 private:
     const RbmProblem& problem_;
     RotationModel model_;
