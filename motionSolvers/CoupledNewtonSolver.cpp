@@ -1,5 +1,7 @@
 #include "CoupledNewtonSolver.hpp"
 
+#include "BlockRowLayout.hpp"
+
 #include <limits>
 
 #include "LocalGlobalSolver.hpp"
@@ -14,6 +16,8 @@ namespace rbm::motion {
 
 struct CoupledNewtonSolver::Context {
     const RbmProblem* problem = nullptr;
+    std::unique_ptr<BlockRowLayout> layout;  // PETSc rows over the ranks (identity when serial)
+    std::vector<double> whole;        // the unknowns gathered from a PETSc vector, natural order
     std::optional<RbmEnergy> energy;  // exact energy for the current prescribed displacements
     std::vector<double> blocks;       // Hessian values in pattern order
     std::vector<double> work;         // gradient scratch
@@ -30,47 +34,17 @@ PetscErrorCode reportException(const char* function, const std::exception& error
     return petscErrorFromException(function, error);
 }
 
-// Read-only view of a Vec as a span (restored on destruction).
-class ReadArray {
-public:
-    explicit ReadArray(Vec vector) : vector_(vector)
-    {
-        RBM_CHECK_PETSC(VecGetLocalSize(vector, &size_));
-        RBM_CHECK_PETSC(VecGetArrayRead(vector, &data_));
-    }
-    ~ReadArray() { (void)VecRestoreArrayRead(vector_, &data_); }
-    ReadArray(const ReadArray&) = delete;
-    ReadArray& operator=(const ReadArray&) = delete;
-    std::span<const double> span() const { return {data_, static_cast<std::size_t>(size_)}; }
-
-private:
-    Vec vector_;
-    const PetscScalar* data_ = nullptr;
-    PetscInt size_ = 0;
-};
-
-class WriteArray {
-public:
-    explicit WriteArray(Vec vector) : vector_(vector)
-    {
-        RBM_CHECK_PETSC(VecGetLocalSize(vector, &size_));
-        RBM_CHECK_PETSC(VecGetArray(vector, &data_));
-    }
-    ~WriteArray() { (void)VecRestoreArray(vector_, &data_); }
-    WriteArray(const WriteArray&) = delete;
-    WriteArray& operator=(const WriteArray&) = delete;
-    std::span<double> span() const { return {data_, static_cast<std::size_t>(size_)}; }
-
-private:
-    Vec vector_;
-    PetscScalar* data_ = nullptr;
-    PetscInt size_ = 0;
-};
+// The whole unknown vector of x, natural order, on every rank (BlockRowLayout).
+std::span<const double> gatherUnknowns(Context& context, Vec x)
+{
+    context.whole.resize(static_cast<std::size_t>(context.problem->unknownCount()));
+    context.layout->gather(x, context.whole, context.problem->blockSize());
+    return context.whole;
+}
 
 double energyAt(Context& context, Vec x)
 {
-    const ReadArray values(x);
-    return context.energy->value(values.span());
+    return context.energy->value(gatherUnknowns(context, x));
 }
 
 // F = P ∇E (the thesis' Eq1–Eq3 with the sliding constraints).
@@ -78,10 +52,11 @@ PetscErrorCode formGradient(SNES, Vec x, Vec f, void* data)
 {
     try {
         auto& context = *static_cast<Context*>(data);
-        const ReadArray values(x);
-        const WriteArray gradient(f);
-        context.energy->gradient(values.span(), gradient.span());
-        context.problem->projectSliding(gradient.span());
+        const std::span<const double> unknowns = gatherUnknowns(context, x);
+        context.work.resize(unknowns.size());
+        context.energy->gradient(unknowns, context.work);
+        context.problem->projectSliding(context.work);
+        context.layout->scatter(context.work, f, context.problem->blockSize());
         return 0;
     } catch (const std::exception& error) {
         return reportException("formGradient", error);
@@ -101,13 +76,11 @@ PetscErrorCode formEnergy(SNES, Vec x, PetscReal* energy, void* data)
 void assembleHessian(Context& context, Vec x, Mat matrix, bool includeCurvature)
 {
     const RbmProblem& problem = *context.problem;
-    {
-        const ReadArray values(x);
-        context.energy->hessian(values.span(), context.blocks, includeCurvature);
-    }
+    context.energy->hessian(gatherUnknowns(context, x), context.blocks, includeCurvature);
     problem.projectSlidingBlocks(context.blocks, problem.blockSize());
     const BlockPattern& pattern = problem.blockPattern();
-    setBlockMatrixValues(matrix, pattern.rowOffsets, pattern.columns, problem.blockSize(), context.blocks);
+    setBlockMatrixValues(matrix, *context.layout, pattern.rowOffsets, pattern.columns, problem.blockSize(),
+                         context.blocks);
 }
 
 PetscErrorCode formHessian(SNES, Vec x, Mat, Mat preconditioner, void* data)
@@ -206,11 +179,10 @@ PetscErrorCode convergedOrAtRoundoff(SNES snes, PetscInt iteration, PetscReal xN
         RBM_CHECK_PETSC(SNESConvergedDefault(snes, iteration, xNorm, stepNorm, fNorm, reason, nullptr));
         if (*reason != SNES_CONVERGED_ITERATING || iteration == 0) return 0;
         constexpr double roundoffFactor = 10.0;  // the estimate is itself ~6x above the floor seen on the airfoil
-        const auto& context = *static_cast<Context*>(data);
+        auto& context = *static_cast<Context*>(data);
         Vec x = nullptr;
         RBM_CHECK_PETSC(SNESGetSolution(snes, &x));
-        const ReadArray values(x);
-        if (fNorm <= roundoffFactor * context.energy->gradientRoundoffNorm(values.span()))
+        if (fNorm <= roundoffFactor * context.energy->gradientRoundoffNorm(gatherUnknowns(context, x)))
             *reason = SNES_CONVERGED_FNORM_ABS;
         return 0;
     } catch (const std::exception& error) {
@@ -225,6 +197,8 @@ CoupledNewtonSolver::CoupledNewtonSolver(const RbmProblem& problem, CoupledNewto
 {
     context_->problem = &problem;
     const BlockPattern& pattern = problem.blockPattern();
+    context_->layout = std::make_unique<BlockRowLayout>(solverCommunicator(), pattern.rowOffsets, pattern.columns);
+    const BlockRowLayout& layout = *context_->layout;
     const int bs = problem.blockSize();
     context_->blocks.assign(static_cast<std::size_t>(pattern.blockCount()) * bs * bs, 0.0);
 
@@ -243,9 +217,9 @@ CoupledNewtonSolver::CoupledNewtonSolver(const RbmProblem& problem, CoupledNewto
         absoluteTolerance = 1e-11 * meanWeightedLength * std::sqrt(std::max(1, problem.unknownNodeCount()));
     }
 
-    solution_ = createVector(problem.unknownCount());
-    residual_ = createVector(problem.unknownCount());
-    RBM_CHECK_PETSC(SNESCreate(PETSC_COMM_SELF, snes_.out()));
+    solution_ = layout.createVector(bs);
+    residual_ = layout.createVector(bs);
+    RBM_CHECK_PETSC(SNESCreate(layout.communicator(), snes_.out()));
     RBM_CHECK_PETSC(SNESSetType(snes_, SNESNEWTONLS));
     RBM_CHECK_PETSC(SNESSetFunction(snes_, residual_, formGradient, context_.get()));
     RBM_CHECK_PETSC(SNESSetObjective(snes_, formEnergy, context_.get()));
@@ -261,7 +235,8 @@ CoupledNewtonSolver::CoupledNewtonSolver(const RbmProblem& problem, CoupledNewto
     setDefaultLinearSolver(ksp, options.linearSolver, problem.dimension(), problem.unknownCount(),
                            MatrixSymmetry::symmetric, options.linearRelativeTolerance);
     configureFromOptions(snes_.get(), petscOptions_);
-    jacobian_ = createBlockMatrix(ksp, pattern.rowOffsets, pattern.columns, bs, MatrixSymmetry::symmetric, petscOptions_);
+    jacobian_ = createBlockMatrix(ksp, layout, pattern.rowOffsets, pattern.columns, bs, MatrixSymmetry::symmetric,
+                                  petscOptions_);
     context_->jacobian = jacobian_;
     RBM_CHECK_PETSC(SNESSetJacobian(snes_, jacobian_, jacobian_, formHessian, context_.get()));
 }
@@ -352,10 +327,7 @@ RbmResult CoupledNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
     SNESConvergedReason reason = SNES_CONVERGED_ITERATING;
     std::vector<double> unknowns(problem_.unknownCount());
     for (;;) {
-        {
-            const WriteArray values(solution_);
-            std::copy(start.begin(), start.end(), values.span().begin());
-        }
+        context_->layout->scatter(start, solution_, bs);
         RBM_CHECK_PETSC(SNESSolve(snes_, nullptr, solution_));
         PetscInt iterations = 0, linearIterations = 0;
         RBM_CHECK_PETSC(SNESGetIterationNumber(snes_, &iterations));
@@ -363,10 +335,7 @@ RbmResult CoupledNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
         RBM_CHECK_PETSC(SNESGetConvergedReason(snes_, &reason));
         result.iterations += static_cast<int>(iterations);
         result.linearIterations += static_cast<int>(linearIterations);
-        {
-            const ReadArray values(solution_);
-            std::copy(values.span().begin(), values.span().end(), unknowns.begin());
-        }
+        context_->layout->gather(solution_, unknowns, bs);
         if (reason <= 0 || restarts == maximumRestarts) break;
         start = unknowns;
         if (largestRotationMismatch(start) < 1e-6) break;

@@ -1,5 +1,7 @@
 #include "PetscSupport.hpp"
 
+#include "BlockRowLayout.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <map>
@@ -204,41 +206,51 @@ bool isType(PetscObject object, const char* type)
 
 } // namespace
 
-PetscMat createBlockMatrix(KSP configuredKsp, std::span<const int> rowOffsets, std::span<const int> columns,
-                           int blockSize, MatrixSymmetry symmetry, const InheritedOptions& options)
+PetscMat createBlockMatrix(KSP configuredKsp, const BlockRowLayout& layout, std::span<const int> rowOffsets,
+                           std::span<const int> columns, int blockSize, MatrixSymmetry symmetry,
+                           const InheritedOptions& options)
 {
     const int blockRows = static_cast<int>(rowOffsets.size()) - 1;
+    if (blockRows != layout.rowCount())
+        throw std::invalid_argument("createBlockMatrix: the pattern does not match the row layout");
     PC pc = nullptr;
     RBM_CHECK_PETSC(KSPGetPC(configuredKsp, &pc));
     const PetscObject pcObject = reinterpret_cast<PetscObject>(pc);
     const bool symmetric = symmetry != MatrixSymmetry::general;
-    MatType type = MATSEQAIJ;
+    // MATAIJ, MATBAIJ and MATSBAIJ become the sequential or the MPI type by communicator.
+    MatType type = MATAIJ;
     if (symmetric && (isType(pcObject, PCCHOLESKY) || isType(pcObject, PCICC))) {
-        type = MATSEQSBAIJ;
+        type = MATSBAIJ;
     } else if (isType(pcObject, PCLU) || isType(pcObject, PCILU) || isType(pcObject, PCJACOBI) ||
                isType(pcObject, PCPBJACOBI) || isType(pcObject, PCBJACOBI) || isType(pcObject, PCSOR) ||
                isType(pcObject, PCNONE) || isType(pcObject, PCCHOLESKY) || isType(pcObject, PCICC)) {
-        type = blockSize > 1 ? MATSEQBAIJ : MATSEQAIJ;
+        type = blockSize > 1 ? MATBAIJ : MATAIJ;
     }
     PetscMat matrix;
-    RBM_CHECK_PETSC(MatCreate(PETSC_COMM_SELF, matrix.out()));
-    RBM_CHECK_PETSC(MatSetSizes(matrix, blockRows * blockSize, blockRows * blockSize, blockRows * blockSize,
-                                blockRows * blockSize));
+    RBM_CHECK_PETSC(MatCreate(layout.communicator(), matrix.out()));
+    RBM_CHECK_PETSC(MatSetSizes(matrix, layout.ownedRowCount() * blockSize, layout.ownedRowCount() * blockSize,
+                                blockRows * blockSize, blockRows * blockSize));
     RBM_CHECK_PETSC(MatSetBlockSize(matrix, blockSize));
     RBM_CHECK_PETSC(MatSetType(matrix, type));
     RBM_CHECK_PETSC(MatSetOptionsPrefix(matrix, options.prefix().c_str()));
     RBM_CHECK_PETSC(MatSetFromOptions(matrix));
 
-    std::vector<PetscInt> blocksPerRow(blockRows), upperBlocksPerRow(blockRows);
-    for (int row = 0; row < blockRows; ++row) {
-        blocksPerRow[row] = rowOffsets[row + 1] - rowOffsets[row];
-        int upper = 0;
-        for (int position = rowOffsets[row]; position < rowOffsets[row + 1]; ++position)
-            if (columns[position] >= row) ++upper;
-        upperBlocksPerRow[row] = upper;
+    // Exact preallocation, per owned row: blocks in this rank's columns (the "diagonal"
+    // part of an MPI matrix) and in other ranks' columns, all and upper triangle only.
+    const int owned = layout.ownedRowCount();
+    std::vector<PetscInt> local(owned), remote(owned), upperLocal(owned), upperRemote(owned);
+    for (int k = 0; k < owned; ++k) {
+        const int row = layout.ownedRows()[k];
+        const int petscRow = layout.petscRow(row);
+        for (int position = rowOffsets[row]; position < rowOffsets[row + 1]; ++position) {
+            const int petscColumn = layout.petscRow(columns[position]);
+            const bool isLocal = petscColumn >= layout.ownedBegin() && petscColumn < layout.ownedEnd();
+            ++(isLocal ? local : remote)[k];
+            if (petscColumn >= petscRow) ++(isLocal ? upperLocal : upperRemote)[k];
+        }
     }
-    RBM_CHECK_PETSC(MatXAIJSetPreallocation(matrix, blockSize, blocksPerRow.data(), nullptr,
-                                            upperBlocksPerRow.data(), nullptr));
+    RBM_CHECK_PETSC(MatXAIJSetPreallocation(matrix, blockSize, local.data(), remote.data(), upperLocal.data(),
+                                            upperRemote.data()));
     RBM_CHECK_PETSC(MatSetOption(matrix, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
     const PetscObject matrixObject = reinterpret_cast<PetscObject>(matrix.get());
     if (isType(matrixObject, MATSEQSBAIJ) || isType(matrixObject, MATMPISBAIJ))
@@ -251,20 +263,20 @@ PetscMat createBlockMatrix(KSP configuredKsp, std::span<const int> rowOffsets, s
     return matrix;
 }
 
-void setBlockMatrixValues(Mat matrix, std::span<const int> rowOffsets, std::span<const int> columns, int blockSize,
-                          std::span<const double> values)
+void setBlockMatrixValues(Mat matrix, const BlockRowLayout& layout, std::span<const int> rowOffsets,
+                          std::span<const int> columns, int blockSize, std::span<const double> values)
 {
-    const int blockRows = static_cast<int>(rowOffsets.size()) - 1;
     const std::size_t area = static_cast<std::size_t>(blockSize) * blockSize;
     if (values.size() != area * columns.size())
         throw std::invalid_argument("setBlockMatrixValues: value array does not match the pattern");
     const bool upperOnly = isType(reinterpret_cast<PetscObject>(matrix), MATSEQSBAIJ) ||
                            isType(reinterpret_cast<PetscObject>(matrix), MATMPISBAIJ);
-    for (PetscInt row = 0; row < blockRows; ++row) {
+    for (const int row : layout.ownedRows()) {
+        const PetscInt petscRow = layout.petscRow(row);
         for (int position = rowOffsets[row]; position < rowOffsets[row + 1]; ++position) {
-            const PetscInt column = columns[position];
-            if (upperOnly && column < row) continue;
-            RBM_CHECK_PETSC(MatSetValuesBlocked(matrix, 1, &row, 1, &column, values.data() + area * position,
+            const PetscInt petscColumn = layout.petscRow(columns[position]);
+            if (upperOnly && petscColumn < petscRow) continue;
+            RBM_CHECK_PETSC(MatSetValuesBlocked(matrix, 1, &petscRow, 1, &petscColumn, values.data() + area * position,
                                                 INSERT_VALUES));
         }
     }
@@ -272,26 +284,20 @@ void setBlockMatrixValues(Mat matrix, std::span<const int> rowOffsets, std::span
     RBM_CHECK_PETSC(MatAssemblyEnd(matrix, MAT_FINAL_ASSEMBLY));
 }
 
-PetscVec createVector(int size)
-{
-    PetscVec vector;
-    RBM_CHECK_PETSC(VecCreateSeq(PETSC_COMM_SELF, size, vector.out()));
-    return vector;
-}
-
 BlockSystemSolver::BlockSystemSolver(std::span<const int> rowOffsets, std::span<const int> columns, int blockSize,
                                      MatrixSymmetry symmetry, LinearSolverKind kind, int dimension,
                                      double relativeTolerance, std::string_view solverName)
     : rowOffsets_(rowOffsets.begin(), rowOffsets.end()), columns_(columns.begin(), columns.end()),
+      layout_(std::make_shared<const BlockRowLayout>(solverCommunicator(), rowOffsets, columns)),
       blockSize_(blockSize), size_((static_cast<int>(rowOffsets.size()) - 1) * blockSize), options_(solverName)
 {
-    RBM_CHECK_PETSC(KSPCreate(PETSC_COMM_SELF, ksp_.out()));
+    RBM_CHECK_PETSC(KSPCreate(layout_->communicator(), ksp_.out()));
     direct_ = setDefaultLinearSolver(ksp_, kind, dimension, size_, symmetry, relativeTolerance);
     configureFromOptions(ksp_.get(), options_);
-    matrix_ = createBlockMatrix(ksp_, rowOffsets_, columns_, blockSize_, symmetry, options_);
+    matrix_ = createBlockMatrix(ksp_, *layout_, rowOffsets_, columns_, blockSize_, symmetry, options_);
     RBM_CHECK_PETSC(KSPSetOperators(ksp_, matrix_, matrix_));
-    rightHandSide_ = createVector(size_);
-    solution_ = createVector(size_);
+    rightHandSide_ = layout_->createVector(blockSize_);
+    solution_ = layout_->createVector(blockSize_);
     // The configured method may differ from the default (options): report what is used.
     KSPType type = nullptr;
     RBM_CHECK_PETSC(KSPGetType(ksp_, &type));
@@ -300,38 +306,20 @@ BlockSystemSolver::BlockSystemSolver(std::span<const int> rowOffsets, std::span<
     direct_ = preonly == PETSC_TRUE;
 }
 
+BlockSystemSolver::~BlockSystemSolver() = default;
+
 void BlockSystemSolver::setMatrix(std::span<const double> blockValues)
 {
-    setBlockMatrixValues(matrix_, rowOffsets_, columns_, blockSize_, blockValues);
+    setBlockMatrixValues(matrix_, *layout_, rowOffsets_, columns_, blockSize_, blockValues);
 }
-
-namespace {
-
-void copyToVector(std::span<const double> values, Vec vector)
-{
-    PetscScalar* array = nullptr;
-    RBM_CHECK_PETSC(VecGetArray(vector, &array));
-    std::copy(values.begin(), values.end(), array);
-    RBM_CHECK_PETSC(VecRestoreArray(vector, &array));
-}
-
-void copyFromVector(Vec vector, std::span<double> values)
-{
-    const PetscScalar* array = nullptr;
-    RBM_CHECK_PETSC(VecGetArrayRead(vector, &array));
-    std::copy(array, array + values.size(), values.begin());
-    RBM_CHECK_PETSC(VecRestoreArrayRead(vector, &array));
-}
-
-} // namespace
 
 BlockSystemSolver::Report BlockSystemSolver::solve(std::span<const double> rightHandSide, std::span<double> solution,
                                                    bool useGuess)
 {
     if (static_cast<int>(rightHandSide.size()) != size_ || static_cast<int>(solution.size()) != size_)
         throw std::invalid_argument("BlockSystemSolver::solve: vector sizes do not match the matrix");
-    copyToVector(rightHandSide, rightHandSide_);
-    if (useGuess) copyToVector(solution, solution_);
+    layout_->scatter(rightHandSide, rightHandSide_, blockSize_);
+    if (useGuess) layout_->scatter(solution, solution_, blockSize_);
     RBM_CHECK_PETSC(KSPSetInitialGuessNonzero(ksp_, useGuess ? PETSC_TRUE : PETSC_FALSE));
     RBM_CHECK_PETSC(KSPSolve(ksp_, rightHandSide_, solution_));
     Report report;
@@ -342,15 +330,15 @@ BlockSystemSolver::Report BlockSystemSolver::solve(std::span<const double> right
     report.iterations = direct_ ? 0 : static_cast<int>(iterations);
     report.converged = reason > 0;
     report.reason = convergedReasonText(reason);
-    copyFromVector(solution_, solution);
+    layout_->gather(solution_, solution, blockSize_);
     return report;
 }
 
 void BlockSystemSolver::multiply(std::span<const double> x, std::span<double> y) const
 {
-    copyToVector(x, solution_);
+    layout_->scatter(x, solution_, blockSize_);
     RBM_CHECK_PETSC(MatMult(matrix_, solution_, rightHandSide_));
-    copyFromVector(rightHandSide_, y);
+    layout_->gather(rightHandSide_, y, blockSize_);
 }
 
 std::string convergedReasonText(KSPConvergedReason reason)

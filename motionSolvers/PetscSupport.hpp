@@ -12,6 +12,7 @@
 #include <petscksp.h>
 #include <petscsnes.h>
 
+#include <memory>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -147,24 +148,28 @@ inline constexpr int directSolverRowLimit = 20000;
 bool setDefaultLinearSolver(KSP ksp, LinearSolverKind kind, int dimension, int rowCount, MatrixSymmetry symmetry,
                             double relativeTolerance);
 
-// A sequential matrix with the block sparsity given in CSR form over block rows (columns
-// sorted, diagonal included) and exact preallocation. Its storage follows the
-// preconditioner configured on ksp: SBAIJ for Cholesky/ICC of symmetric matrices, BAIJ for
+class BlockRowLayout;
+
+// A matrix with the block sparsity given in CSR form over natural block rows (columns
+// sorted, diagonal included) and exact preallocation, distributed as `layout` says (see
+// BlockRowLayout.hpp; sequential on one rank). Its storage follows the preconditioner
+// configured on ksp: SBAIJ for Cholesky/ICC of symmetric matrices, BAIJ for
 // LU/ILU/Jacobi-type preconditioners, AIJ with the block size set for everything else
 // (multigrid needs AIJ). `-mat_type`, `-rbm_mat_type`, `-rbm_<solverName>_mat_type` override.
-PetscMat createBlockMatrix(KSP configuredKsp, std::span<const int> rowOffsets, std::span<const int> columns,
-                           int blockSize, MatrixSymmetry symmetry, const InheritedOptions& options);
-// Inserts all blocks (blockSize² values each, row-major, in pattern order) and assembles.
-// Lower-triangular blocks are skipped for SBAIJ storage.
-void setBlockMatrixValues(Mat matrix, std::span<const int> rowOffsets, std::span<const int> columns, int blockSize,
-                          std::span<const double> values);
-
-// A sequential vector of the given size.
-PetscVec createVector(int size);
+PetscMat createBlockMatrix(KSP configuredKsp, const BlockRowLayout& layout, std::span<const int> rowOffsets,
+                           std::span<const int> columns, int blockSize, MatrixSymmetry symmetry,
+                           const InheritedOptions& options);
+// Inserts this rank's rows of the blocks (blockSize² values each, row-major, in natural
+// pattern order: every rank passes all of them) and assembles (collective). Blocks below
+// the diagonal (in PETSc's numbering) are skipped for SBAIJ storage.
+void setBlockMatrixValues(Mat matrix, const BlockRowLayout& layout, std::span<const int> rowOffsets,
+                          std::span<const int> columns, int blockSize, std::span<const double> values);
 
 // One sparse linear system over a block pattern, owning its matrix and KSP. The KSP keeps
 // its preconditioner (for a direct solver: the factorisation) between solve() calls until
-// setMatrix() changes the values, so a constant matrix is factorised once.
+// setMatrix() changes the values, so a constant matrix is factorised once. The system is
+// distributed over solverCommunicator() (BlockRowLayout.hpp); its interface takes and
+// returns whole arrays in natural order on every rank.
 class BlockSystemSolver {
 public:
     struct Report {
@@ -178,12 +183,14 @@ public:
     BlockSystemSolver(std::span<const int> rowOffsets, std::span<const int> columns, int blockSize,
                       MatrixSymmetry symmetry, LinearSolverKind kind, int dimension, double relativeTolerance,
                       std::string_view solverName);
+    ~BlockSystemSolver();
 
     int size() const { return size_; }
     int blockSize() const { return blockSize_; }
     bool isDirect() const { return direct_; }
     KSP ksp() const { return ksp_; }
     Mat matrix() const { return matrix_; }
+    const BlockRowLayout& layout() const { return *layout_; }
 
     // Inserts the blocks (blockSize² values each, row-major, pattern order) and assembles.
     void setMatrix(std::span<const double> blockValues);
@@ -195,6 +202,7 @@ public:
 private:
     std::vector<int> rowOffsets_;
     std::vector<int> columns_;
+    std::shared_ptr<const BlockRowLayout> layout_;
     int blockSize_;
     int size_;
     bool direct_ = false;
