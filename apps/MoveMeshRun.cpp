@@ -1,5 +1,6 @@
 #include "MoveMeshRun.hpp"
 
+#include "BlockRowLayout.hpp"
 #include "CompressedFile.hpp"
 #include "FoamDictionaryWriter.hpp"
 #include "InputError.hpp"
@@ -200,7 +201,8 @@ std::string usageText()
             "Options:\n"
             "  -case DIR       case folder (default: the current folder)\n"
             "  -noVTK          do not write VTK/<case>_<time>.vtu and VTK/<case>.pvd\n"
-            "  -parallel       accepted; runs on more than one MPI rank are not supported yet\n"
+            "  -parallel       under mpirun -np N: distribute the solve over the N ranks (each reads\n"
+            "                  the whole case; rank 0 writes)\n"
             "  -writeInvalid   write steps with inverted cells or without convergence anyway\n"
             "                  (with a warning; the run goes on, the exit status is still 1)\n"
             "  -help           print this message\n"
@@ -494,6 +496,7 @@ bool MoveMeshRun::isWriteTime(int step, double time)
 
 void MoveMeshRun::writeTime(const std::string& timeName, const std::vector<Vector3>& points)
 {
+    if (!options_.writesFiles) return;
     io::TimeFolderWriter folder(caseDirectory_, timeName);
 
     io::FoamWriteOptions pointOptions;
@@ -529,6 +532,7 @@ void MoveMeshRun::writeTime(const std::string& timeName, const std::vector<Vecto
 
 void MoveMeshRun::writeVtk(double time, const std::string& timeName, const std::vector<Vector3>& points)
 {
+    if (!options_.writesFiles) return;
     // evaluator_'s geometry is that of `points` (evaluated just before).
     const MeshGeometry& geometry = evaluator_->geometry();
     const std::size_t cellCount = geometry.cellVolumes.size();
@@ -640,11 +644,12 @@ int MoveMeshRun::run()
     clockStart_ = std::chrono::duration<double>(Clock::now().time_since_epoch()).count();
     writeTimeIndex_ = 0;
 
-    for (const std::string& name : io::removeStaleStagingFolders(caseDirectory_)) {
+    for (const std::string& name :
+         options_.writesFiles ? io::removeStaleStagingFolders(caseDirectory_) : std::vector<std::string>{}) {
         err_ << "rbmMoveMesh: removed " << name << ", the unfinished time folder of an interrupted run\n";
     }
     printHeader();
-    io::JsonLinesWriter jsonLog(jsonLogFile(), true);
+    io::JsonLinesWriter jsonLog = options_.writesFiles ? io::JsonLinesWriter(jsonLogFile(), true) : io::JsonLinesWriter();
 
     // The initial mesh: quality, and the first entry of the VTK series.
     std::vector<Vector3> points = solver_->curPoints();
@@ -707,7 +712,7 @@ int MoveMeshRun::run()
 
             out_ << io::formatStepLogLine(record, timeNameWidth_) << '\n';
             out_.flush();
-            jsonLog.append(io::stepLogJson(record));
+            if (jsonLog.isOpen()) jsonLog.append(io::stepLogJson(record));
             ++stepsRun;
 
             Extremes& e = extremes_;
@@ -829,6 +834,29 @@ int runMoveMesh(const MoveMeshOptions& options, std::ostream& out, std::ostream&
     }
 }
 
+namespace {
+
+// A -parallel run: every rank runs the whole program on the replicated case with the
+// solvers distributed over PETSC_COMM_WORLD (BlockRowLayout.hpp); rank 0 prints and writes.
+// The other ranks keep their messages and print them only when their exit status differs
+// from rank 0's (a failure of their own), so a bad case is reported once.
+int runOnAllRanks(MoveMeshOptions options, int rank, std::ostream& out, std::ostream& err)
+{
+    motion::setSolverCommunicator(PETSC_COMM_WORLD);
+    std::ostringstream quietOut, quietErr;
+    options.writesFiles = rank == 0;
+    const int status = runMoveMesh(options, rank == 0 ? out : quietOut, rank == 0 ? err : quietErr);
+    motion::setSolverCommunicator(PETSC_COMM_SELF);
+    int statusOfRankZero = status;
+    MPI_Bcast(&statusOfRankZero, 1, MPI_INT, 0, PETSC_COMM_WORLD);
+    if (rank != 0 && status != statusOfRankZero) err << "[rank " << rank << "] " << quietErr.str();
+    int worst = status;
+    MPI_Allreduce(MPI_IN_PLACE, &worst, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD);
+    return worst;
+}
+
+} // namespace
+
 int moveMeshMain(int argc, char** argv, std::ostream& out, std::ostream& err)
 {
     try {
@@ -858,15 +886,17 @@ int moveMeshMain(int argc, char** argv, std::ostream& out, std::ostream& err)
         int rank = 0;
         MPI_Comm_size(PETSC_COMM_WORLD, &size);
         MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
-        if (size > 1) {
+        if (size > 1 && !commandLine.options.parallel) {
+            // N copies of a serial run would all write the same time folders.
             if (rank == 0) {
                 err << "rbmMoveMesh: started on " << size
-                    << " MPI ranks, but parallel runs are not supported yet (the coupled solve is not "
-                       "distributed over ranks). Run rbmMoveMesh on one process.\n";
+                    << " MPI ranks without -parallel. Add -parallel to distribute the solve over the ranks, "
+                       "or run on one process.\n";
             }
             return exitBadInput;
         }
-        return runMoveMesh(commandLine.options, out, err);
+        if (size == 1) return runMoveMesh(commandLine.options, out, err);
+        return runOnAllRanks(commandLine.options, rank, out, err);
     } catch (const UsageError& error) {
         err << "rbmMoveMesh: " << error.what() << "\n\n" << usageText();
         return exitBadInput;

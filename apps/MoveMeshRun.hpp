@@ -59,6 +59,9 @@ struct MoveMeshOptions {
     bool writeVtk = true;        // -noVTK turns it off
     bool writeInvalid = false;   // -writeInvalid
     bool parallel = false;       // -parallel
+    // False on the MPI ranks other than 0 of a -parallel run: every rank reads the case and
+    // takes part in the distributed solve, rank 0 alone writes (time folders, VTK, log).
+    bool writesFiles = true;
 };
 
 // A command-line problem: printed with the usage, exit status 2.

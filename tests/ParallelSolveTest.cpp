@@ -7,6 +7,8 @@
 
 #include "BlockRowLayout.hpp"
 #include "MeshGenerators.hpp"
+#include "MoveMeshRun.hpp"
+#include "PolyMeshReader.hpp"
 #include "MotionSolverRegistry.hpp"
 #include "PointPatchDisplacement.hpp"
 #include "RbmEnergy.hpp"
@@ -16,13 +18,19 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <functional>
+#include <regex>
+#include <sstream>
 #include <string>
+#include <unistd.h>
 
 namespace {
 
 using namespace rbm;
 using namespace rbm::motion;
+using namespace rbm::app;
 
 static auto* const petscEnvironment = ::testing::AddGlobalTestEnvironment(new rbm::test::PetscTestEnvironment);
 
@@ -151,6 +159,88 @@ TEST(ParallelSolve, ThreeDimensionalTwistWithSlidingSidesMatchesTheSerialSolve)
     expectSameOnAllRanks(mesh, "top", displacementOf, 1.0 / 6.0,
                          {"subSteps 1;", "formulation linearized; subSteps 1;", "coupling decoupled; subSteps 1;",
                           "linearSolver iterative; subSteps 1;"});
+}
+
+// The program end to end: `mpiexec -n 2 rbmMoveMesh -case C -parallel` (moveMeshMain on
+// every rank) against a serial run of the same case, three steps of the pitching airfoil
+// (13 575 nodes per plane; warm-started Newton). Rank 0 alone writes.
+TEST(ParallelMoveMesh, PitchingAirfoilStepsMatchTheSerialRunAndOnlyRankZeroWrites)
+{
+    namespace fs = std::filesystem;
+    int rank = 0;
+    MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+    // One scratch folder for all ranks: rank 0 names it.
+    std::string root = (fs::temp_directory_path() / ("rbmParallelMoveMesh-" + std::to_string(getpid()))).string();
+    {
+        int length = static_cast<int>(root.size());
+        MPI_Bcast(&length, 1, MPI_INT, 0, PETSC_COMM_WORLD);
+        root.resize(static_cast<std::size_t>(length));
+        MPI_Bcast(root.data(), length, MPI_CHAR, 0, PETSC_COMM_WORLD);
+    }
+    const fs::path serialCase = fs::path(root) / "serial";
+    const fs::path parallelCase = fs::path(root) / "parallel";
+    if (rank == 0) {
+        for (const fs::path& target : {serialCase, parallelCase}) {
+            fs::create_directories(target);
+            fs::copy(fs::path(RBM_TEST_DATA_DIR) / "../../tutorials/naca4415Pitching", target,
+                     fs::copy_options::recursive);
+            const fs::path controlDict = target / "system" / "controlDict";
+            std::stringstream text;
+            text << std::ifstream(controlDict).rdbuf();
+            std::string edited = std::regex_replace(text.str(), std::regex("endTime +2;"), "endTime 0.075;");
+            edited = std::regex_replace(edited, std::regex("writeInterval +10;"), "writeInterval 1;");
+            std::ofstream(controlDict) << edited;
+        }
+        std::ostringstream out, err;
+        MoveMeshOptions options;
+        options.caseDirectory = serialCase;
+        options.writeVtk = false;
+        ASSERT_EQ(runMoveMesh(options, out, err), exitSuccess) << err.str();
+    }
+    MPI_Barrier(PETSC_COMM_WORLD);
+
+    const std::string caseArgument = parallelCase.string();
+    std::vector<std::string> arguments{"rbmMoveMesh", "-case", caseArgument, "-noVTK", "-parallel"};
+    std::vector<char*> argv;
+    for (std::string& argument : arguments) argv.push_back(argument.data());
+    argv.push_back(nullptr);
+    std::ostringstream out, err;
+    const int status = moveMeshMain(static_cast<int>(arguments.size()), argv.data(), out, err);
+    EXPECT_EQ(status, exitSuccess) << err.str();
+    if (rank != 0) EXPECT_TRUE(out.str().empty()) << "only rank 0 prints";
+    MPI_Barrier(PETSC_COMM_WORLD);
+
+    if (rank == 0) {
+        EXPECT_NE(out.str().find("Time = 0.075"), std::string::npos) << out.str();
+        for (const std::string time : {"0.025", "0.05", "0.075"}) {
+            const std::vector<Vector3> serial = io::readPolyMeshPoints(serialCase / time / "polyMesh" / "points.gz");
+            const std::vector<Vector3> parallel = io::readPolyMeshPoints(parallelCase / time / "polyMesh" / "points.gz");
+            const std::vector<Vector3> initial = io::readPolyMeshPoints(serialCase / "constant" / "polyMesh" / "points.gz");
+            ASSERT_EQ(serial.size(), parallel.size());
+            // Written with 12 digits: equal to that, and far below 1e-8 of the smallest cell (~1e-3).
+            EXPECT_LT(largestDifference(serial, parallel), 1e-11) << time;
+            EXPECT_GT(largestDifference(serial, initial), 1e-3) << time;
+        }
+        // No stray output from the other rank: exactly the serial run's time folders.
+        std::vector<std::string> serialEntries, parallelEntries;
+        for (const auto& entry : fs::directory_iterator(serialCase)) serialEntries.push_back(entry.path().filename());
+        for (const auto& entry : fs::directory_iterator(parallelCase)) parallelEntries.push_back(entry.path().filename());
+        std::sort(serialEntries.begin(), serialEntries.end());
+        std::sort(parallelEntries.begin(), parallelEntries.end());
+        EXPECT_EQ(serialEntries, parallelEntries);
+        fs::remove_all(root);
+    }
+}
+
+TEST(ParallelMoveMesh, SeveralRanksWithoutParallelIsABadCommandLine)
+{
+    if (worldSize() == 1) GTEST_SKIP() << "needs mpiexec -n 2";
+    std::vector<std::string> arguments{"rbmMoveMesh", "-case", "/nonexistent"};
+    std::vector<char*> argv;
+    for (std::string& argument : arguments) argv.push_back(argument.data());
+    argv.push_back(nullptr);
+    std::ostringstream out, err;
+    EXPECT_EQ(moveMeshMain(static_cast<int>(arguments.size()), argv.data(), out, err), exitBadInput);
 }
 
 } // namespace
