@@ -1,6 +1,7 @@
 #include "CoupledLinearizedSolver.hpp"
 
 #include "RbmEnergy.hpp"
+#include "RigidMotionModes.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -23,6 +24,7 @@ CoupledLinearizedSolver::CoupledLinearizedSolver(const RbmProblem& problem, Coup
     energy.hessian(origin, blocks);
     problem.projectSlidingBlocks(blocks, bs);
     system_->setMatrix(blocks);
+    if (!system_->isDirect()) system_->setNearNullSpace(rigidMotionModes(problem));
 }
 
 std::vector<double> CoupledLinearizedSolver::solveUnknowns(std::span<const Vector3> prescribedDisplacement,

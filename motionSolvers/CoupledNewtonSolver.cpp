@@ -6,6 +6,7 @@
 
 #include "LocalGlobalSolver.hpp"
 #include "RbmEnergy.hpp"
+#include "RigidMotionModes.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -238,6 +239,7 @@ CoupledNewtonSolver::CoupledNewtonSolver(const RbmProblem& problem, CoupledNewto
     jacobian_ = createBlockMatrix(ksp, layout, pattern.rowOffsets, pattern.columns, bs, MatrixSymmetry::symmetric,
                                   petscOptions_);
     context_->jacobian = jacobian_;
+    setNearNullSpace(jacobian_, layout, bs, rigidMotionModes(problem));  // for GAMG; direct solvers ignore it
     RBM_CHECK_PETSC(SNESSetJacobian(snes_, jacobian_, jacobian_, formHessian, context_.get()));
 }
 

@@ -303,6 +303,23 @@ void setBlockMatrixValues(Mat matrix, const BlockRowLayout& layout, std::span<co
     RBM_CHECK_PETSC(MatAssemblyEnd(matrix, MAT_FINAL_ASSEMBLY));
 }
 
+void setNearNullSpace(Mat matrix, const BlockRowLayout& layout, int blockSize,
+                      const std::vector<std::vector<double>>& modes)
+{
+    if (modes.empty()) return;
+    std::vector<PetscVec> vectors;
+    std::vector<Vec> handles;
+    for (const std::vector<double>& mode : modes) {
+        vectors.push_back(layout.createVector(blockSize));
+        layout.scatter(mode, vectors.back(), blockSize);
+        handles.push_back(vectors.back());
+    }
+    PetscHandle<MatNullSpace, MatNullSpaceDestroy> nullSpace;
+    RBM_CHECK_PETSC(MatNullSpaceCreate(layout.communicator(), PETSC_FALSE, static_cast<PetscInt>(handles.size()),
+                                       handles.data(), nullSpace.out()));
+    RBM_CHECK_PETSC(MatSetNearNullSpace(matrix, nullSpace));
+}
+
 BlockSystemSolver::BlockSystemSolver(std::span<const int> rowOffsets, std::span<const int> columns, int blockSize,
                                      MatrixSymmetry symmetry, LinearSolverKind kind, int dimension,
                                      double relativeTolerance, std::string_view solverName)
@@ -326,6 +343,11 @@ BlockSystemSolver::BlockSystemSolver(std::span<const int> rowOffsets, std::span<
 }
 
 BlockSystemSolver::~BlockSystemSolver() = default;
+
+void BlockSystemSolver::setNearNullSpace(const std::vector<std::vector<double>>& modes)
+{
+    motion::setNearNullSpace(matrix_, *layout_, blockSize_, modes);
+}
 
 void BlockSystemSolver::setMatrix(std::span<const double> blockValues)
 {

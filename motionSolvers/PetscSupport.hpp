@@ -165,6 +165,11 @@ PetscMat createBlockMatrix(KSP configuredKsp, const BlockRowLayout& layout, std:
 void setBlockMatrixValues(Mat matrix, const BlockRowLayout& layout, std::span<const int> rowOffsets,
                           std::span<const int> columns, int blockSize, std::span<const double> values);
 
+// Tells algebraic multigrid the near null space of `matrix`: orthonormal vectors in natural
+// order (all rows, every rank), e.g. rigidMotionModes(). Direct solvers ignore it.
+void setNearNullSpace(Mat matrix, const BlockRowLayout& layout, int blockSize,
+                      const std::vector<std::vector<double>>& modes);
+
 // One sparse linear system over a block pattern, owning its matrix and KSP. The KSP keeps
 // its preconditioner (for a direct solver: the factorisation) between solve() calls until
 // setMatrix() changes the values, so a constant matrix is factorised once. The system is
@@ -194,6 +199,8 @@ public:
 
     // Inserts the blocks (blockSize² values each, row-major, pattern order) and assembles.
     void setMatrix(std::span<const double> blockValues);
+    // See the free function setNearNullSpace; call before the first solve.
+    void setNearNullSpace(const std::vector<std::vector<double>>& modes);
     // Solves A x = b. With useGuess, x's input is the initial guess of an iterative method.
     Report solve(std::span<const double> rightHandSide, std::span<double> solution, bool useGuess = false);
     // y = A x.
