@@ -4,6 +4,7 @@
 #include "CompressedFile.hpp"
 #include "FoamDictionaryWriter.hpp"
 #include "InputError.hpp"
+#include "MemoryEstimate.hpp"
 #include "MeshTopology.hpp"
 #include "MotionSolverRegistry.hpp"
 #include "PetscSupport.hpp"
@@ -23,10 +24,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <ctime>
 #include <limits>
 #include <numbers>
 #include <ostream>
+#include <set>
 #include <sstream>
 
 #ifndef RBM_VERSION
@@ -65,6 +68,8 @@ std::string general(double value, int digits = 6)
     std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
     return buffer;
 }
+
+bool isFinite(const Vector3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 // Node classes written to VTK's "nodeClass" point field.
 constexpr std::uint8_t nodeFree = 0;
@@ -238,8 +243,13 @@ std::string usageText()
             "  Time = 0.025     sub-steps  1  iterations    3  residual 2.10e-10  worst quality  0.3100\n"
             "  max non-orthogonality  28.40  inverted 0  wall   0.120 s  (one line)\n"
             "\n"
-            "Exit status: 0 success; 1 a step with inverted cells or without convergence (nothing\n"
-            "written for it), or a failure during the run; 2 bad command line or case (nothing written).\n"
+            "Before assembling, the memory the solve needs is estimated and compared with what the\n"
+            "machine has (MemAvailable, a cgroup limit, or RBM_AVAILABLE_MEMORY_MB=<MiB> in the\n"
+            "environment); a solve that does not fit stops the run with both figures (exit status 1).\n"
+            "\n"
+            "Exit status: 0 success; 1 a step with inverted cells, without convergence or with NaN\n"
+            "values (nothing written for it), not enough memory, or a failure during the run; 2 bad\n"
+            "command line or case (nothing written).\n"
             "See docs/rbmMoveMesh.md.\n";
     return text.str();
 }
@@ -308,11 +318,30 @@ MoveMeshRun::MoveMeshRun(MoveMeshOptions options, std::ostream& out, std::ostrea
                              startTimeName_);
     }
 
-    mesh_ = io::readPolyMesh(caseDirectory_ / "constant" / "polyMesh");
+    const fs::path polyMeshFolder = caseDirectory_ / "constant" / "polyMesh";
+    mesh_ = io::readPolyMesh(polyMeshFolder);
+    // OpenFOAM's rules the reader does not check one file at a time: upper-triangular face
+    // order, closed and consistently oriented cells, no point twice in a face. Inverted
+    // cells are not an input error here (the initial mesh's are reported as a warning).
+    TopologyCheckOptions topologyChecks;
+    topologyChecks.checkCellVolumes = false;
+    topologyChecks.maxMessages = 5;
+    if (const auto problems = checkPolyMeshOrdering(mesh_, topologyChecks); !problems.empty()) {
+        std::string text = "the mesh breaks OpenFOAM's polyMesh rules (files faces, owner, neighbour):";
+        for (const std::string& problem : problems) text += "\n  " + problem;
+        throw InputError(polyMeshFolder.string(), 0, text);
+    }
     dynamicMeshDict_ = io::Dictionary::readFile(caseDirectory_ / "constant" / "dynamicMeshDict");
     const fs::path boundaryFieldPath = io::resolveMaybeCompressed(boundaryFieldFile_);
     pointDisplacementDictionary_ = io::Dictionary::readFile(boundaryFieldPath);
     boundaryField_ = io::readPointVectorField(boundaryFieldPath, mesh_);
+
+    // Before the solver assembles anything: does the solve fit in the memory there is?
+    computeNodeClasses();
+    cells_ = std::make_unique<CellFieldWorkspace>();
+    cells_->topology = buildMeshTopology(mesh_);
+    checkMemory();
+
     solver_ = motion::builtinMotionSolvers().create(mesh_, dynamicMeshDict_, &pointDisplacementDictionary_,
                                                      caseDirectory_);
 
@@ -336,10 +365,7 @@ MoveMeshRun::MoveMeshRun(MoveMeshOptions options, std::ostream& out, std::ostrea
     }
     solver_->pointDisplacement() = std::move(initial);
 
-    computeNodeClasses();
     evaluator_ = std::make_unique<QualityEvaluator>(mesh_);
-    cells_ = std::make_unique<CellFieldWorkspace>();
-    cells_->topology = buildMeshTopology(mesh_);
     if (options_.writeVtk) {
         cells_->vtkCells = io::vtkCellsOf(mesh_, cells_->topology);
         if (detectPseudoTwoD(mesh_) != PseudoTwoDKind::None) {
@@ -372,6 +398,25 @@ void MoveMeshRun::computeNodeClasses()
     nodeClasses_.assign(mesh_.points.size(), nodeFree);
     prescribedPatches_.assign(mesh_.patches.size(), 0);
     for (std::size_t p = 0; p < conditions.size(); ++p) {
+        // A patch both moving and sliding: on a constraint patch (symmetryPlane, symmetry)
+        // OpenFOAM's pointPatchField::New silently replaces the entry's type by the
+        // constraint's, so a motion given to that patch by name would be dropped without a
+        // word. The types that do not prescribe a motion are the free, sliding and 2D ones.
+        static const std::set<std::string> notMoving{"zeroGradient", "calculated", "slip",  "fixedNormalSlip",
+                                                     "symmetry",     "symmetryPlane", "empty", "wedge"};
+        const io::PointPatchFieldEntry& entry = boundaryField_.boundaryField[p];
+        if (conditions[p]->nodeClass() == motion::PatchNodeClass::sliding && entry.type != conditions[p]->type() &&
+            entry.match == io::PointPatchFieldEntry::Match::PatchName && !notMoving.count(entry.type) &&
+            !entry.dictionary.contains("patchType")) {
+            const io::Entry* typeEntry = entry.dictionary.find("type");
+            throw InputError(entry.dictionary.file(), typeEntry ? typeEntry->line() : entry.dictionary.line(),
+                             "patch " + mesh_.patches[p].name + " is a " + mesh_.patches[p].type +
+                                 " patch in constant/polyMesh/boundary, so its points slide on it, but its entry "
+                                 "gives it type " +
+                                 entry.type +
+                                 ", a prescribed motion: a patch cannot both move and slide. Expected type " +
+                                 conditions[p]->type() + " for this patch (or another patch type in the boundary file)");
+        }
         std::uint8_t nodeClass = nodeFree;
         switch (conditions[p]->nodeClass()) {
         case motion::PatchNodeClass::prescribed:
@@ -387,6 +432,86 @@ void MoveMeshRun::computeNodeClasses()
             current = std::max(current, nodeClass);
         }
     }
+}
+
+void MoveMeshRun::checkMemory() const
+{
+    // Only the RBM solver has a model (MemoryEstimate.hpp); its options are read again by the
+    // solver, which reports their errors.
+    const char* keyword = dynamicMeshDict_.contains("motionSolver") ? "motionSolver" : "solver";
+    if (!dynamicMeshDict_.contains(keyword) ||
+        dynamicMeshDict_.get<std::string>(keyword) != motion::RigidBodyMotionSolver::typeNameString) {
+        return;
+    }
+    const std::string coefficientsName = std::string(motion::RigidBodyMotionSolver::typeNameString) + "Coeffs";
+    const io::Dictionary* coefficients = dynamicMeshDict_.findDictionary(coefficientsName);
+    const io::Dictionary empty(dynamicMeshDict_.name() + "/" + coefficientsName, dynamicMeshDict_.file(), 0);
+    const motion::RigidBodyMotionOptions rbmOptions = motion::RigidBodyMotionOptions::read(coefficients ? *coefficients : empty);
+
+    std::vector<std::uint8_t> prescribed(nodeClasses_.size());
+    for (std::size_t p = 0; p < prescribed.size(); ++p) prescribed[p] = nodeClasses_[p] == nodePrescribed;
+    const bool twoD = detectPseudoTwoD(mesh_) != PseudoTwoDKind::None;
+    const motion::SolveSize size = motion::estimateSolveSize(cells_->topology, prescribed, twoD);
+    const motion::SolveVariant variant = motion::solveVariantOf(rbmOptions);
+    const int systems = motion::linearSystemsAtOnce(rbmOptions);
+    const motion::MemoryEstimate needed = motion::estimateSolveMemory(variant, size, rbmOptions.linearSolver, systems);
+
+    // The memory there is, or what RBM_AVAILABLE_MEMORY_MB says (tests; a machine whose
+    // figures mislead).
+    std::optional<motion::AvailableMemory> available;
+    if (const char* limit = std::getenv("RBM_AVAILABLE_MEMORY_MB"); limit && *limit) {
+        char* end = nullptr;
+        const double mebibytes = std::strtod(limit, &end);
+        if (end == limit || *end != '\0' || !(mebibytes >= 0.0)) {
+            throw InputError("RBM_AVAILABLE_MEMORY_MB", 0,
+                             std::string("expected a number of MiB (the memory rbmMoveMesh may use), found '") + limit +
+                                 "'");
+        }
+        available = motion::AvailableMemory{mebibytes * 1048576.0, "RBM_AVAILABLE_MEMORY_MB"};
+    } else {
+        available = motion::availableMemory();
+    }
+    if (!available || needed.bytes <= available->bytes) return;
+
+    std::ostringstream message;
+    message << "the solve needs about " << motion::formatBytes(needed.bytes) << " of memory, but only "
+            << motion::formatBytes(available->bytes) << " is available (" << available->source << "): "
+            << rbmOptions.describe() << ", " << (needed.direct ? "direct factorisation" : "Krylov + multigrid")
+            << " of " << general(needed.rows, 10) << " unknowns (" << general(size.unknownNodes, 10) << " nodes in "
+            << size.dimension << "D)";
+    if (systems > 1) message << ", " << systems << " systems at once (linearized sub-steps)";
+    message << ".";
+    if (needed.direct) {
+        const motion::MemoryEstimate iterative =
+            motion::estimateSolveMemory(variant, size, motion::LinearSolverKind::iterative, systems);
+        if (iterative.bytes <= available->bytes) {
+            message << " With 'linearSolver iterative;' in " << coefficientsName << " (constant/dynamicMeshDict) it needs about "
+                    << motion::formatBytes(iterative.bytes) << ".";
+        }
+    }
+    message << " Run it on a machine with more memory, or coarsen the mesh.";
+    throw std::runtime_error(message.str());
+}
+
+void MoveMeshRun::checkBoundaryDisplacementIsFinite(double time) const
+{
+    const std::vector<Vector3>& displacement = solver_->pointDisplacement();
+    if (std::all_of(displacement.begin(), displacement.end(), [](const Vector3& u) { return isFinite(u); })) return;
+    for (std::size_t p = 0; p < mesh_.patches.size(); ++p) {
+        for (const Label point : io::patchPointLabels(mesh_, static_cast<Label>(p))) {
+            const Vector3& u = displacement[static_cast<std::size_t>(point)];
+            if (isFinite(u)) continue;
+            const io::PointPatchFieldEntry& entry = boundaryField_.boundaryField[p];
+            throw InputError(entry.dictionary.file().empty() ? boundaryFieldFile_.string() : entry.dictionary.file(),
+                             entry.dictionary.line(),
+                             "the boundary condition of patch " + mesh_.patches[p].name + " (type " + entry.type +
+                                 ") gives the displacement (" + general(u.x) + " " + general(u.y) + " " +
+                                 general(u.z) + ") at time " + general(time) + " (point " + std::to_string(point) +
+                                 "); expected finite numbers");
+        }
+    }
+    throw std::runtime_error("the displacement of a point inside the mesh is NaN or infinite before the solve at time " +
+                             general(time));
 }
 
 void MoveMeshRun::printHeader() const
@@ -676,9 +801,29 @@ int MoveMeshRun::run()
         try {
             name = timeNameOf(time);
             solver_->updateBoundaryConditions(time);
-            const motion::MotionSolveReport solve = solver_->solve();
+            checkBoundaryDisplacementIsFinite(time);
+            motion::MotionSolveReport solve = solver_->solve();
             points = solver_->curPoints();
-            const QualityReport quality = evaluator_->evaluate(points);
+
+            // A solve that produced NaN or infinite values failed whatever it reports; such a
+            // mesh is never written (not even with -writeInvalid) and stops the run.
+            const auto nonFinite = std::count_if(solver_->pointDisplacement().begin(), solver_->pointDisplacement().end(),
+                                                 [](const Vector3& u) { return !isFinite(u); });
+            const bool finite = nonFinite == 0 && std::isfinite(solve.residual);
+            std::string nonFiniteText;
+            if (!finite) {
+                if (nonFinite > 0) {
+                    const auto first = std::find_if(solver_->pointDisplacement().begin(), solver_->pointDisplacement().end(),
+                                                     [](const Vector3& u) { return !isFinite(u); });
+                    nonFiniteText = "NaN or infinite displacement at " + std::to_string(nonFinite) + " of " +
+                                    std::to_string(points.size()) + " points (first: point " +
+                                    std::to_string(first - solver_->pointDisplacement().begin()) + ")";
+                } else {
+                    nonFiniteText = "a residual of " + general(solve.residual);
+                }
+                solve.converged = false;
+            }
+            const QualityReport quality = finite ? evaluator_->evaluate(points) : QualityReport{};
 
             io::StepLogRecord record;
             record.step = step;
@@ -689,15 +834,20 @@ int MoveMeshRun::run()
             record.residual = solve.residual;
             record.energy = solve.energy;
             record.converged = solve.converged;
-            record.reason = solve.reason;
-            record.worstQuality = worstCellQuality(quality);
-            record.maxNonOrthogonality = quality.checkMesh.maxNonOrthogonality;
-            record.maxSkewness = quality.checkMesh.maxSkewness;
-            record.invertedCells = quality.invertedCellCount();
+            record.reason = finite ? solve.reason : solve.reason + "; " + nonFiniteText;
+            if (finite) {
+                record.worstQuality = worstCellQuality(quality);
+                record.maxNonOrthogonality = quality.checkMesh.maxNonOrthogonality;
+                record.maxSkewness = quality.checkMesh.maxSkewness;
+                record.invertedCells = quality.invertedCellCount();
+            } else {
+                record.maxNonOrthogonality = std::numeric_limits<double>::quiet_NaN();
+                record.maxSkewness = std::numeric_limits<double>::quiet_NaN();
+            }
             const bool valid = solve.converged && record.invertedCells == 0;
 
             const bool scheduled = isWriteTime(step, time);   // called every step: it keeps state
-            if (valid ? scheduled : options_.writeInvalid) {
+            if (valid ? scheduled : options_.writeInvalid && finite) {
                 if (!valid) {
                     err_ << "\n*** WARNING (-writeInvalid): writing time " << name << " although "
                          << (record.invertedCells > 0 ? std::to_string(record.invertedCells) + " cells are inverted"
@@ -721,11 +871,11 @@ int MoveMeshRun::run()
                 e.worstQualityTime = time;
                 e.haveQuality = true;
             }
-            if (step == 1 || record.maxNonOrthogonality > e.maxNonOrthogonality) {
+            if (finite && (step == 1 || record.maxNonOrthogonality > e.maxNonOrthogonality)) {
                 e.maxNonOrthogonality = record.maxNonOrthogonality;
                 e.maxNonOrthogonalityTime = time;
             }
-            if (step == 1 || record.maxSkewness > e.maxSkewness) {
+            if (finite && (step == 1 || record.maxSkewness > e.maxSkewness)) {
                 e.maxSkewness = record.maxSkewness;
                 e.maxSkewnessTime = time;
             }
@@ -743,19 +893,32 @@ int MoveMeshRun::run()
             if (!valid) {
                 ++e.invalidSteps;
                 exitStatus = exitRunFailed;
-                if (!options_.writeInvalid) {
+                if (!options_.writeInvalid || !finite) {
                     err_ << "rbmMoveMesh: time " << name << ": ";
-                    if (record.invertedCells > 0) {
+                    if (!finite) {
+                        err_ << "the motion solver produced " << nonFiniteText << " (solver's reason: " << solve.reason
+                             << ").\nNothing was written for time " << name
+                             << " (not even with -writeInvalid); earlier times stay as written. A boundary "
+                                "displacement far larger than the mesh, or a linear solver that diverged, does this; "
+                                "-rbm_newton_snes_monitor, -rbm_linearized_ksp_monitor or -ksp_monitor show the "
+                                "iterations.\n";
+                    } else if (record.invertedCells > 0) {
                         err_ << "the moved mesh has " << record.invertedCells << " inverted cell"
                              << (record.invertedCells == 1 ? "" : "s");
                         if (!solve.converged) err_ << " and the solve did not converge (" << solve.reason << ")";
+                        err_ << ".\nNothing was written for time " << name
+                             << "; earlier times stay as written. More sub-steps (subSteps in "
+                                "rigidBodyMotionSolverCoeffs) or the nonlinear formulation may help; -writeInvalid "
+                                "writes the step anyway to look at it.\n";
                     } else {
-                        err_ << "the motion solver did not converge (" << solve.reason << ")";
+                        err_ << "the motion solver did not converge (" << solve.reason << ")"
+                             << ".\nNothing was written for time " << name
+                             << "; earlier times stay as written. More sub-steps or iterations (subSteps, "
+                                "maxIterations in rigidBodyMotionSolverCoeffs) or another linear solver "
+                                "(linearSolver, petscOptions) may help; -rbm_newton_snes_monitor, "
+                                "-rbm_linearized_ksp_monitor or -ksp_monitor show the iterations; -writeInvalid "
+                                "writes the step anyway to look at it.\n";
                     }
-                    err_ << ".\nNothing was written for time " << name
-                         << "; earlier times stay as written. More sub-steps (subSteps in "
-                            "rigidBodyMotionSolverCoeffs) or the nonlinear formulation may help; -writeInvalid "
-                            "writes the step anyway to look at it.\n";
                     break;
                 }
             }

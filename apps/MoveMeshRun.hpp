@@ -16,10 +16,17 @@
 //  3. At write times (controlDict writeControl) the step is written atomically:
 //     <time>/polyMesh/points, <time>/pointDisplacement and, unless -noVTK,
 //     VTK/<caseName>_<time>.vtu with VTK/<caseName>.pvd. The initial mesh goes to VTK too.
-//  4. A step with inverted cells or a solve that did not converge stops the run with exit
-//     status 1 and writes nothing for that step; with -writeInvalid it is written anyway
-//     (whatever the write schedule) with a loud warning, the run goes on, and the exit
-//     status is still 1.
+//  4. A step with inverted cells or a solve that did not converge (the message gives PETSc's
+//     converged/diverged reason) stops the run with exit status 1 and writes nothing for that
+//     step; with -writeInvalid it is written anyway (whatever the write schedule) with a loud
+//     warning, the run goes on, and the exit status is still 1. A solve that produced NaN or
+//     infinite values (displacements or residual) always stops the run and is never written;
+//     a boundary condition that gives NaN or infinite displacements is bad input (status 2),
+//     naming the patch's entry.
+//  Setup also checks OpenFOAM's polyMesh rules across files (upper-triangular order, closed
+//  cells), rejects a patch both moving and sliding (a motion given by name to a symmetry
+//  or symmetryPlane patch), and, before the solver assembles, compares the estimated memory
+//  of the solve (motionSolvers/MemoryEstimate.hpp) with what the machine has.
 //
 // Restart (startFrom latestTime, or a startTime whose folder an earlier run wrote): the
 // boundary conditions are those of the earliest time folder up to the start time that has
@@ -51,7 +58,7 @@ namespace rbm::app {
 
 // Exit statuses of rbmMoveMesh.
 inline constexpr int exitSuccess = 0;
-inline constexpr int exitRunFailed = 1;   // inverted cells, no convergence, a failure during the run
+inline constexpr int exitRunFailed = 1;   // inverted cells, no convergence, NaN, not enough memory, a failure during the run
 inline constexpr int exitBadInput = 2;    // bad command line or case (nothing written)
 
 struct MoveMeshOptions {
@@ -136,6 +143,12 @@ private:
     void writeVtk(double time, const std::string& timeName, const std::vector<Vector3>& points);
     double worstCellQuality(const QualityReport& report) const;
     void computeNodeClasses();
+    // Throws std::runtime_error when the solve's estimated memory (MemoryEstimate.hpp) exceeds
+    // what the machine has (or RBM_AVAILABLE_MEMORY_MB): before the solver assembles anything.
+    void checkMemory() const;
+    // Throws rbm::InputError naming the patch whose condition gave a NaN or infinite
+    // displacement at `time` (called after updateBoundaryConditions).
+    void checkBoundaryDisplacementIsFinite(double time) const;
     void printSummary(int stepsRun, double wallSeconds) const;
 
     MoveMeshOptions options_;

@@ -33,6 +33,7 @@
 #include "DecoupledSolver.hpp"
 #include "FoamDictionary.hpp"
 #include "LocalGlobalSolver.hpp"
+#include "MemoryEstimate.hpp"
 #include "MeshGenerators.hpp"
 #include "MeshTopology.hpp"
 #include "PetscSupport.hpp"
@@ -551,25 +552,16 @@ std::unique_ptr<motion::RbmSolver> makeSolver(const std::string& variant, const 
     throw std::invalid_argument("unknown variant " + variant + ". Valid variants are:" + valid);
 }
 
-// Rough memory of a variant's linear algebra (bytes), to skip runs that cannot fit.
-//  - Direct factorisations (2D, and 3D up to directSolverRowLimit rows, PetscSupport.hpp): about
-//    130 bytes × log2(rows) per row, fitted to the peaks measured on the benchmark's 2D meshes
-//    at 1e4 and 1e5 nodes (linearized: 685 MiB at 3e5 rows); Newton keeps an LU of its Hessian
-//    besides the linearized Cholesky factor (×2.3 measured); the Laplacian variants factorise
-//    one scalar matrix over the nodes.
-//  - Krylov + multigrid (3D): the assembled block array, PETSc's AIJ copy and the multigrid
-//    hierarchy, about 38 bytes per stored value; Newton holds two such systems.
+// Rough memory of a variant's linear algebra (bytes), to skip runs that cannot fit: the
+// model of motionSolvers/MemoryEstimate.hpp (rbmMoveMesh checks the same before it assembles).
 double estimatedMatrixBytes(const std::string& variant, const motion::RbmProblem& problem)
 {
-    const bool scalarLaplacian = variant == "decoupled" || variant == "localGlobal";
-    const double rows = scalarLaplacian ? problem.unknownNodeCount() : problem.unknownCount();
-    const bool direct = problem.dimension() == 2 || rows <= motion::directSolverRowLimit;
-    const double factor = variant == "newton" ? 2.3 : (variant == "decoupledLinearized" ? 2.0 : 1.0);
-    if (direct) return factor * rows * 130.0 * std::log2(std::max(rows, 2.0));
-    const double blocks = problem.blockPattern().blockCount();
-    const double values = scalarLaplacian ? blocks : blocks * problem.blockSize() * problem.blockSize();
-    constexpr double bytesPerValue = 8.0 + 12.0 + 18.0;
-    return factor * values * bytesPerValue;
+    const motion::SolveVariant solveVariant = variant == "decoupled"             ? motion::SolveVariant::decoupledNonlinear
+                                              : variant == "decoupledLinearized" ? motion::SolveVariant::decoupledLinearized
+                                              : variant == "linearized"          ? motion::SolveVariant::coupledLinearized
+                                              : variant == "localGlobal"         ? motion::SolveVariant::coupledLocalGlobal
+                                                                                 : motion::SolveVariant::coupledNewton;
+    return motion::estimateSolveMemory(solveVariant, motion::solveSizeOf(problem)).bytes;
 }
 
 // ---------------------------------------------------------------------------------------

@@ -68,9 +68,17 @@ public:
 private:
     Sandbox()
     {
-        std::string pattern = (std::filesystem::temp_directory_path() / "rbm-fuzz-XXXXXX").string();
-        if (::mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("cannot create a temporary folder " + pattern);
-        root_ = pattern;
+        if (const char* fixed = std::getenv("RBM_FUZZ_SANDBOX"); fixed && *fixed) {
+            // scripts/fuzz.sh --ci: the same path every run, so that no input's path (whose
+            // length and characters the readers loop over) makes two runs differ.
+            root_ = fixed;
+            std::filesystem::remove_all(root_);
+            std::filesystem::create_directories(root_);
+        } else {
+            std::string pattern = (std::filesystem::temp_directory_path() / "rbm-fuzz-XXXXXX").string();
+            if (::mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("cannot create a temporary folder " + pattern);
+            root_ = pattern;
+        }
         // Files a dictionary input may include ("includeDict", "sub/loopA", "zipped",
         // "<case>/constant/header"): successful includes, a nested one, a loop, a file with
         // its own (binary, 64-bit label) header and a gzip one.

@@ -2,6 +2,10 @@
 
 #include "TimeName.hpp"
 
+#include <cerrno>
+#include <cstring>
+#include <fcntl.h>    // AT_FDCWD
+#include <stdio.h>    // renameat2, RENAME_EXCHANGE (glibc 2.28)
 #include <unistd.h>
 
 #include <atomic>
@@ -41,7 +45,7 @@ fs::path compressionTwin(const fs::path& file)
 }
 
 // Moves every file under `from` to the same relative place under `to`, replacing files
-// there and removing their compression twins.
+// there and removing their compression twins (the fallback without RENAME_EXCHANGE).
 void mergeInto(const fs::path& from, const fs::path& to)
 {
     for (const fs::directory_entry& entry : fs::directory_iterator(from)) {
@@ -54,10 +58,48 @@ void mergeInto(const fs::path& from, const fs::path& to)
             }
             continue;
         }
-        fs::rename(entry.path(), destination);   // atomic replacement of one file
         std::error_code ignored;
+        if (fs::equivalent(entry.path(), destination, ignored)) continue;   // a kept file, linked by linkKeptFiles
+        fs::rename(entry.path(), destination);   // atomic replacement of one file
         fs::remove(compressionTwin(destination), ignored);
     }
+}
+
+// Gives `staging` every file of the existing time folder `existing` that it does not
+// replace: hard links (the same file, no copy), or copies where the file system has none.
+// A file whose name or compression twin is staged is left out; sub-folders recurse.
+void linkKeptFiles(const fs::path& existing, const fs::path& staging)
+{
+    for (const fs::directory_entry& entry : fs::directory_iterator(existing)) {
+        const fs::path name = entry.path().filename();
+        const fs::path destination = staging / name;
+        if (entry.is_directory() && !entry.is_symlink()) {
+            if (fs::exists(destination) && !fs::is_directory(destination)) continue;   // replaced by a file
+            fs::create_directories(destination);
+            linkKeptFiles(entry.path(), destination);
+            continue;
+        }
+        std::error_code error;
+        if (fs::exists(fs::symlink_status(destination, error)) ||
+            fs::exists(fs::symlink_status(compressionTwin(destination), error))) {
+            continue;   // replaced by the staged file
+        }
+        if (entry.is_symlink()) {
+            fs::copy_symlink(entry.path(), destination);
+            continue;
+        }
+        fs::create_hard_link(entry.path(), destination, error);
+        if (error) fs::copy_file(entry.path(), destination);
+    }
+}
+
+// Swaps two folders in one step. False when the file system cannot (the caller falls back).
+bool exchangeFolders(const fs::path& a, const fs::path& b)
+{
+    if (::renameat2(AT_FDCWD, a.c_str(), AT_FDCWD, b.c_str(), RENAME_EXCHANGE) == 0) return true;
+    const int error = errno;
+    if (error == EINVAL || error == ENOSYS || error == ENOTSUP) return false;
+    throw fs::filesystem_error("cannot exchange the folders", a, b, std::error_code(error, std::generic_category()));
 }
 
 } // namespace
@@ -98,8 +140,15 @@ fs::path TimeFolderWriter::commit()
             if (!fs::is_directory(folder)) {
                 throw std::runtime_error(folder.string() + " exists and is not a folder");
             }
-            mergeInto(staging_, folder);
-            fs::remove_all(staging_);
+            linkKeptFiles(folder, staging_);
+            if (exchangeFolders(staging_, folder)) {
+                // The old folder now has the staging name: a kill before it is gone leaves a
+                // staging folder, which the next run removes (removeStaleStagingFolders).
+                fs::remove_all(staging_);
+            } else {
+                mergeInto(staging_, folder);
+                fs::remove_all(staging_);
+            }
         }
     } catch (const fs::filesystem_error& error) {
         throw std::runtime_error("cannot move the files of time " + timeName_ + " into " + folder.string() + ": " +

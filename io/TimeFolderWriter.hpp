@@ -7,11 +7,17 @@
 // numbers), then committed:
 //  - when <case>/<time> does not exist, the staging folder is renamed to it: one atomic
 //    rename, the folder appears complete or not at all;
-//  - when it exists (a run repeated over earlier results, or files of a flow solver), every
-//    staged file is renamed over its namesake (each replacement atomic; other files in the
-//    folder are kept), and the compression twin of each staged file (`points` for
-//    `points.gz` and the other way round) is removed so a stale file never shadows the new
-//    one, as OpenFOAM does.
+//  - when it exists (a run repeated over earlier results, or files of a flow solver), the
+//    files of the existing folder that the staged ones do not replace are hard-linked (or
+//    copied) into the staging folder, leaving out the compression twin of each staged file
+//    (`points` for `points.gz` and the other way round) so a stale file never shadows the
+//    new one, as OpenFOAM does; then the two folders are swapped in one atomic
+//    renameat2(RENAME_EXCHANGE) and the old one, now under the staging name, is removed.
+//    A kill -9 at any moment leaves the old folder or the new one, whole; at worst a staging
+//    folder, which removeStaleStagingFolders() clears at the next run. File systems without
+//    RENAME_EXCHANGE (it needs Linux 3.15 and, e.g., no NFS) fall back to renaming every
+//    staged file over its namesake: each file is replaced atomically, the folder as a whole
+//    is not.
 // When writing fails (an exception before commit) the staging folder is removed: nothing
 // partial is left behind.
 //

@@ -318,7 +318,7 @@ RbmResult CoupledNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
     for (std::vector<double>& candidate : candidateStarts) {
         largestRotationMismatch(candidate);
         const double energy = context_->energy->value(candidate);
-        if (energy < lowestEnergy) {
+        if (start.empty() || energy < lowestEnergy) {  // the first even when no energy is finite
             lowestEnergy = energy;
             start = candidate;
         }

@@ -3,6 +3,7 @@
 # UndefinedBehaviorSanitizer in build-asan/, and runs the whole test suite there.
 #   scripts/sanitizers.sh             install dependencies, build, run ctest
 #   scripts/sanitizers.sh -R regex    only the tests whose names match (ctest -R)
+#   JOBS=1 scripts/sanitizers.sh      build and test with one job (default: all cores)
 # Exits non-zero when the build fails, a test fails, or a sanitizer reports an error
 # (memory error, leak, undefined behaviour: every report aborts the test that made it).
 #
@@ -16,6 +17,7 @@ cd "$(dirname "$0")/.."
 scripts/setup.sh --deps   # the Debian packages of the normal build (idempotent, quiet)
 
 build=build-asan
+jobs=${JOBS:-$(nproc)}
 start=$(date +%s)
 flags="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
 cmake -S . -B $build -DCMAKE_BUILD_TYPE=RelWithDebInfo \
@@ -31,7 +33,7 @@ export ASAN_OPTIONS="detect_leaks=1:detect_stack_use_after_return=1:check_initia
 export LSAN_OPTIONS="suppressions=$PWD/scripts/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
 
-if ! cmake --build $build -j "$(nproc)" >$build/build.log 2>&1; then
+if ! cmake --build $build -j "$jobs" >$build/build.log 2>&1; then
   grep -E -B2 -A8 "error|Error" $build/build.log | head -80
   echo "sanitizers: build failed (log: $build/build.log)" >&2
   exit 1
@@ -51,7 +53,7 @@ done
 echo "sanitizers: leak detection off for the MPI programs: $(ls $build/sanitizer-options | tr '\n' ' ')"
 
 status=0
-ctest --test-dir $build --output-on-failure -j "$(nproc)" --timeout 900 "$@" || status=$?
+ctest --test-dir $build --output-on-failure -j "$jobs" --timeout 900 "$@" || status=$?
 echo "sanitizers: tests ran in $(( $(date +%s) - built )) s (total $(( $(date +%s) - start )) s)"
 if [ $status -ne 0 ]; then
   echo "sanitizers: FAILED: a test failed or a sanitizer reported an error (see above)" >&2

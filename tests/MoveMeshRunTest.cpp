@@ -18,6 +18,7 @@
 #include "TimeName.hpp"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
@@ -34,6 +35,7 @@
 #include <functional>
 #include <map>
 #include <numbers>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <string>
@@ -535,6 +537,44 @@ TEST(TimeFolderWriter, CommitIntoAnExistingTimeKeepsOtherFilesAndRemovesCompress
     expectNoTemporaryFiles(dir.path());
 }
 
+// The identity of a file or folder (device, inode): unchanged by renames, new for a new folder.
+std::pair<dev_t, ino_t> identity(const fs::path& path)
+{
+    struct stat status {};
+    EXPECT_EQ(::stat(path.c_str(), &status), 0) << path;
+    return {status.st_dev, status.st_ino};
+}
+
+TEST(TimeFolderWriter, CommitIntoAnExistingTimeSwapsInAWholeFolderThatHardLinksTheKeptFiles)
+{
+    // Not the old folder filled file by file (a kill -9 in between would leave a mix), but a
+    // new folder holding the staged files and links to the kept ones, swapped in at once.
+    TempDir dir("commitExchange");
+    writeText(dir.path() / "0.5" / "U", "velocity of a flow solver");
+    writeText(dir.path() / "0.5" / "uniform" / "time", "time dictionary");
+    writeText(dir.path() / "0.5" / "polyMesh" / "points", "old points");
+    writeText(dir.path() / "0.5" / "polyMesh" / "faces", "faces of a topology change");
+    const auto oldFolder = identity(dir.path() / "0.5");
+    const auto oldU = identity(dir.path() / "0.5" / "U");
+    const auto oldFaces = identity(dir.path() / "0.5" / "polyMesh" / "faces");
+    {
+        io::TimeFolderWriter folder(dir.path(), "0.5");
+        writeText(folder.staging() / "polyMesh" / "points.gz", "new points");
+        writeText(folder.staging() / "pointDisplacement", "new displacement");
+        folder.commit();
+    }
+    EXPECT_NE(identity(dir.path() / "0.5"), oldFolder) << "the folder was filled in place, not swapped";
+    EXPECT_EQ(identity(dir.path() / "0.5" / "U"), oldU) << "U was copied, not linked";
+    EXPECT_EQ(identity(dir.path() / "0.5" / "polyMesh" / "faces"), oldFaces);
+    EXPECT_EQ(readText(dir.path() / "0.5" / "U"), "velocity of a flow solver");
+    EXPECT_EQ(readText(dir.path() / "0.5" / "uniform" / "time"), "time dictionary");
+    EXPECT_EQ(readText(dir.path() / "0.5" / "polyMesh" / "points.gz"), "new points");
+    EXPECT_EQ(readText(dir.path() / "0.5" / "pointDisplacement"), "new displacement");
+    EXPECT_FALSE(fs::exists(dir.path() / "0.5" / "polyMesh" / "points"));
+    // The old folder (now under the staging name) is gone too.
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir.path()), fs::directory_iterator()), 1);
+}
+
 TEST(TimeFolderWriter, AWriterThatFailsBeforeCommitLeavesNothingBehind)
 {
     TempDir dir("failed");
@@ -967,6 +1007,200 @@ TEST(MoveMeshRun, ParallelOptionOnOneProcessRunsNormally)
     std::ostringstream err;
     EXPECT_EQ(app::moveMeshMain(5, const_cast<char**>(argv), out, err), app::exitSuccess) << out.str() << err.str();
     EXPECT_TRUE(contains(out.str(), "Time = 0.05 ")) << out.str();
+}
+
+
+// ---- solves that fail ------------------------------------------------------------------------------
+
+// The left side turns by 0.3 rad at t = 0.05 (about its midpoint): Newton needs several
+// iterations from the linearized start, a Krylov method without preconditioner many.
+const std::string turningBoundary = R"foam(
+    left
+    {
+        type            angularOscillatingDisplacement;
+        axis            (0 0 1);
+        origin          (0 0.5 0);
+        angle0          0;
+        amplitude       0.3;
+        omega           31.41592653589793;
+        value           uniform (0 0 0);
+    }
+    right           { type fixedValue; value uniform (0 0 0); }
+    "(top|bottom)"  { type zeroGradient; }
+    frontAndBack    { type empty; }
+)foam";
+
+struct FailingSolve {
+    std::string name;
+    std::string coefficients;        // rigidBodyMotionSolverCoeffs
+    std::string boundary;            // boundaryField
+    std::vector<std::string> expected;  // in the message
+    bool writeInvalid = false;
+};
+
+void PrintTo(const FailingSolve& failing, std::ostream* out) { *out << failing.name; }
+
+class MoveMeshRunFailingSolve : public ::testing::TestWithParam<FailingSolve> {};
+
+// The run stops at the first step with exit status 1 and PETSc's reason in the message;
+// nothing is written for the step: no time folder, no .vtu, constant/, system/ and 0/ as
+// they were (only the run's log and the initial mesh's VTK file are new).
+TEST_P(MoveMeshRunFailingSolve, StopsWithPetscsReasonAndWritesNothingForTheStep)
+{
+    const FailingSolve& failing = GetParam();
+    TempDir dir("failing" + failing.name);
+    Control control;
+    control.endTime = "0.1";
+    control.writeInterval = "1";
+    writeSquareCase(dir.path(), control, failing.boundary, failing.coefficients);
+    const auto before = listing(dir.path());
+    const RunResult result = runCase(dir.path(), true, failing.writeInvalid);
+    EXPECT_EQ(result.status, app::exitRunFailed) << result.out << result.err;
+    for (const std::string& part : failing.expected) EXPECT_TRUE(contains(result.err, part)) << part << "\n" << result.err;
+    EXPECT_TRUE(contains(result.err, "rbmMoveMesh: time 0.05: ")) << result.err;
+    EXPECT_TRUE(contains(result.err, "Nothing was written for time 0.05")) << result.err;
+    ASSERT_EQ(result.records.size(), 1u);
+    EXPECT_FALSE(result.records[0].converged);
+    EXPECT_FALSE(result.records[0].written);
+    EXPECT_EQ(timeFolders(dir.path()), std::set<std::string>{"0"});
+    auto after = listing(dir.path());
+    const std::string caseName = dir.path().filename().string();
+    EXPECT_TRUE(after.count("VTK/" + caseName + "_0.vtu"));
+    EXPECT_FALSE(after.count("VTK/" + caseName + "_0.05.vtu"));
+    std::erase_if(after, [](const auto& entry) {
+        return entry.first.rfind("VTK", 0) == 0 || entry.first.rfind("postProcessing", 0) == 0;
+    });
+    EXPECT_EQ(after, before);
+    // The log records the failed step with the reason.
+    const auto lines = readJsonLines(dir.path() / "postProcessing" / "rbmMoveMesh" / "0" / "log.jsonl");
+    ASSERT_EQ(lines.size(), 1u);
+    EXPECT_FALSE(lines[0].at("converged").boolean);
+    EXPECT_TRUE(contains(lines[0].at("reason").text, failing.expected.front())) << lines[0].at("reason").text;
+    expectNoTemporaryFiles(dir.path());
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, MoveMeshRunFailingSolve,
+    ::testing::Values(
+        // SNES stopped after one Newton step.
+        FailingSolve{"NewtonIterationLimit", "petscOptions \"-rbm_newton_snes_max_it 1\";", turningBoundary,
+                     {"DIVERGED_MAX_IT", "the motion solver did not converge"}},
+        // Newton's linear solves fail: CG without preconditioner, 2 iterations.
+        FailingSolve{"NewtonLinearSolveFails",
+                     "petscOptions \"-rbm_newton_ksp_type cg -rbm_newton_pc_type none -rbm_newton_ksp_max_it 2\";",
+                     turningBoundary, {"DIVERGED_LINEAR_SOLVE", "the motion solver did not converge"}},
+        // The linearized system with CG, no preconditioner, 2 iterations.
+        FailingSolve{"LinearizedKrylovIterationLimit",
+                     "formulation linearized; subSteps 1; petscOptions \"-rbm_linearized_ksp_type cg "
+                     "-rbm_linearized_pc_type none -rbm_linearized_ksp_max_it 2\";",
+                     turningBoundary, {"DIVERGED_ITS", "did not converge"}},
+        // A boundary displacement of 1e300: the energy overflows, SNES reports the NaN/Inf
+        // norm; not written even with -writeInvalid.
+        FailingSolve{"NewtonOverflow", "", R"foam(
+    left            { type fixedValue; value uniform (1e300 0 0); }
+    right           { type fixedValue; value uniform (0 0 0); }
+    "(top|bottom)"  { type zeroGradient; }
+    frontAndBack    { type empty; }
+)foam",
+                     {"DIVERGED_FNORM_NAN", "a residual of inf", "not even with -writeInvalid"}, true},
+        // The linearized solve of the same: a direct factorisation "converges" (CONVERGED_ITS)
+        // to an infinite residual.
+        FailingSolve{"LinearizedOverflow", "formulation linearized; subSteps 1;", R"foam(
+    left            { type fixedValue; value uniform (1e300 0 0); }
+    right           { type fixedValue; value uniform (0 0 0); }
+    "(top|bottom)"  { type zeroGradient; }
+    frontAndBack    { type empty; }
+)foam",
+                     {"residual of inf", "not even with -writeInvalid"}, true}),
+    [](const ::testing::TestParamInfo<FailingSolve>& info) { return info.param.name; });
+
+TEST(MoveMeshRun, ABoundaryConditionGivingAnInfiniteDisplacementIsBadInputNamingThePatch)
+{
+    // uniformFixedValue polynomial: x = 1e308 t², infinite at t = 2.
+    TempDir dir("infiniteBoundary");
+    Control control;
+    control.deltaT = "2";
+    control.endTime = "2";
+    control.writeInterval = "1";
+    writeSquareCase(dir.path(), control, R"foam(
+    left
+    {
+        type            uniformFixedValue;
+        uniformValue    polynomial (((1e308 0 0) (2 0 0)));
+        value           uniform (0 0 0);
+    }
+    right           { type fixedValue; value uniform (0 0 0); }
+    "(top|bottom)"  { type zeroGradient; }
+    frontAndBack    { type empty; }
+)foam");
+    const auto before = listing(dir.path());
+    const RunResult result = runCase(dir.path(), false, true);
+    EXPECT_EQ(result.status, app::exitBadInput) << result.out << result.err;
+    // 0/pointDisplacement, the line of the patch's entry (header 9 lines, then 4), the patch.
+    const std::string file = (dir.path() / "0" / "pointDisplacement").string();
+    EXPECT_TRUE(contains(result.err, file + ":15: the boundary condition of patch left (type uniformFixedValue) gives "
+                                            "the displacement (inf 0 0) at time 2"))
+        << result.err;
+    EXPECT_TRUE(contains(result.err, "expected finite numbers")) << result.err;
+    EXPECT_TRUE(contains(result.err, "Nothing was written for this time")) << result.err;
+    EXPECT_TRUE(result.records.empty());
+    auto after = listing(dir.path());
+    std::erase_if(after, [](const auto& entry) { return entry.first.rfind("postProcessing", 0) == 0; });
+    EXPECT_EQ(after, before);
+}
+
+// ---- memory ------------------------------------------------------------------------------------------
+
+// Sets an environment variable for one scope.
+class ScopedEnvironment {
+public:
+    ScopedEnvironment(const char* name, const char* value) : name_(name)
+    {
+        if (const char* old = std::getenv(name)) old_ = old;
+        ::setenv(name, value, 1);
+    }
+    ~ScopedEnvironment()
+    {
+        if (old_) ::setenv(name_.c_str(), old_->c_str(), 1);
+        else ::unsetenv(name_.c_str());
+    }
+
+private:
+    std::string name_;
+    std::optional<std::string> old_;
+};
+
+TEST(MoveMeshRun, ASolveLargerThanTheMemoryStopsBeforeAssemblingAndSaysHowMuchItNeeds)
+{
+    // The 8 × 8 square, default solver (coupled Newton, direct in 2D): 81 planar nodes, the
+    // 18 on the left and right sides prescribed, 63 unknown, 189 rows. Estimate
+    // (MemoryEstimate.hpp): 2.3 × 189 × 130 × log2(189) = 427 350 bytes = 417.3 KiB.
+    TempDir dir("memory");
+    writeSquareCase(dir.path(), Control{}, pitchingBoundary);
+    const auto before = listing(dir.path());
+    {
+        const ScopedEnvironment limit("RBM_AVAILABLE_MEMORY_MB", "0.25");
+        const RunResult result = runCase(dir.path());
+        EXPECT_EQ(result.status, app::exitRunFailed) << result.out << result.err;
+        EXPECT_TRUE(contains(result.err, "the solve needs about 417.3 KiB of memory, but only 256.0 KiB is available "
+                                         "(RBM_AVAILABLE_MEMORY_MB)"))
+            << result.err;
+        EXPECT_TRUE(contains(result.err, "direct factorisation of 189 unknowns (63 nodes in 2D)")) << result.err;
+        EXPECT_TRUE(contains(result.err, "Nothing was written.")) << result.err;
+        EXPECT_TRUE(result.records.empty());
+        EXPECT_EQ(listing(dir.path()), before);
+    }
+    {
+        const ScopedEnvironment limit("RBM_AVAILABLE_MEMORY_MB", "0.5");   // 512 KiB: enough
+        const RunResult result = runCase(dir.path(), false);
+        EXPECT_EQ(result.status, app::exitSuccess) << result.out << result.err;
+    }
+    {
+        const ScopedEnvironment limit("RBM_AVAILABLE_MEMORY_MB", "plenty");
+        const RunResult result = runCase(dir.path(), false);
+        EXPECT_EQ(result.status, app::exitBadInput) << result.out << result.err;
+        EXPECT_TRUE(contains(result.err, "RBM_AVAILABLE_MEMORY_MB: expected a number of MiB")) << result.err;
+    }
 }
 
 } // namespace

@@ -103,3 +103,30 @@ if(EXISTS ${RBM_WORK_DIR}/noSuchCase)
 endif()
 # A PETSc option (underscore) is accepted and passed on.
 run(petsc 0 -case ${case} -noVTK -rbm_unused_option 1)
+
+# --- A solve that fails, and a solve too large for the memory (fresh copies) ---------------------
+# Newton stopped after one iteration by a PETSc option on the command line: exit status 1,
+# PETSc's reason in the message, no time folder for the step.
+set(diverging ${RBM_WORK_DIR}/diverging/naca4415)
+file(MAKE_DIRECTORY ${RBM_WORK_DIR}/diverging)
+file(COPY ${RBM_SOURCE_DIR}/tutorials/naca4415 DESTINATION ${RBM_WORK_DIR}/diverging)
+run(diverging 1 -case ${diverging} -noVTK -rbm_newton_snes_max_it 1)
+expectContains("${diverging_err}" "time 1: the motion solver did not converge (DIVERGED_MAX_IT" "stderr")
+expectContains("${diverging_err}" "Nothing was written for time 1" "stderr")
+if(EXISTS ${diverging}/1)
+  fail("a step that did not converge was written: ${diverging}/1")
+endif()
+# RBM_AVAILABLE_MEMORY_MB below the estimate: exit status 1 before anything is assembled or written.
+file(GLOB before RELATIVE ${diverging} ${diverging}/*)
+execute_process(COMMAND ${CMAKE_COMMAND} -E env RBM_AVAILABLE_MEMORY_MB=1 ${RBM_MOVE_MESH} -case ${diverging}
+                RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE memory_err)
+if(NOT status EQUAL 1)
+  fail("rbmMoveMesh with RBM_AVAILABLE_MEMORY_MB=1: exit status ${status}, expected 1\n${out}\n${memory_err}")
+endif()
+expectContains("${memory_err}" "the solve needs about " "stderr")
+expectContains("${memory_err}" "but only 1 MiB is available (RBM_AVAILABLE_MEMORY_MB)" "stderr")
+expectContains("${memory_err}" "Nothing was written." "stderr")
+file(GLOB after RELATIVE ${diverging} ${diverging}/*)
+if(NOT before STREQUAL after)
+  fail("the run that did not fit in memory changed the case: ${before} -> ${after}")
+endif()

@@ -1,0 +1,512 @@
+// kill -9 of the built rbmMoveMesh (fork/exec) at many moments of a run on a mesh large
+// enough that writing a time folder takes a noticeable time (a 2D case of 160 × 160 cells,
+// 51 842 points, written as gzip-compressed ascii with 17 digits: 0.3-0.5 s of a 0.6-0.8 s
+// step, three write times, 3-4 s a run in the Release build). After every kill the case
+// must hold, for every written time, either no folder or the complete folder, byte for byte
+// the one of an uninterrupted run (and reading back to the same points), nothing else that
+// OpenFOAM would take for a time folder (a name that reads wholly as a number), and
+// constant/, system/ and 0/ as they were. Moments:
+//  - right before and right after every commit of a time folder (the rename of
+//    TimeFolderWriter), exactly, through the LD_PRELOAD shim KillAtRename.cpp;
+//  - while a staging folder is being filled (its points.gz or pointDisplacement.gz
+//    partly written), then a rerun must clear the leftover and give the uninterrupted result;
+//  - at fixed fractions of the uninterrupted run's wall time;
+//  - while the folders of an earlier run are being replaced: each must then be the old one
+//    or the new one, whole, with the flow solver's file kept.
+
+#include "MeshGenerators.hpp"
+#include "PolyMeshReader.hpp"
+#include "PolyMeshWriter.hpp"
+
+#include <gtest/gtest.h>
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+extern char** environ;
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace rbm;
+using Clock = std::chrono::steady_clock;
+
+const std::vector<std::string> writtenTimes = {"0.1", "0.2", "0.3"};
+
+class TempDir {
+public:
+    explicit TempDir(const std::string& name)
+        : path_(fs::temp_directory_path() / ("rbmKillDuringWriteTest_" + name + "_" + std::to_string(::getpid())))
+    {
+        fs::remove_all(path_);
+        fs::create_directories(path_);
+    }
+    ~TempDir() { fs::remove_all(path_); }
+    const fs::path& path() const { return path_; }
+
+private:
+    fs::path path_;
+};
+
+void writeText(const fs::path& file, const std::string& text)
+{
+    fs::create_directories(file.parent_path());
+    std::ofstream out(file);
+    out << text;
+}
+
+std::string readBytes(const fs::path& file)
+{
+    std::ifstream in(file, std::ios::binary);
+    std::stringstream buffer;
+    buffer << in.rdbuf();
+    return buffer.str();
+}
+
+std::string header(const std::string& className, const std::string& location, const std::string& object)
+{
+    return "FoamFile\n{\n    version 2.0;\n    format ascii;\n    class " + className + ";\n    location \"" +
+           location + "\";\n    object " + object + ";\n}\n\n";
+}
+
+std::string controlDict(bool compressed)
+{
+    return header("dictionary", "system", "controlDict") +
+           "application rbmMoveMesh;\nstartFrom startTime;\nstartTime 0;\nstopAt endTime;\nendTime 0.3;\n"
+           "deltaT 0.1;\nwriteControl timeStep;\nwriteInterval 1;\nwriteFormat ascii;\nwritePrecision 17;\n"
+           "writeCompression " +
+           std::string(compressed ? "on" : "off") + ";\ntimeFormat general;\ntimePrecision 6;\n";
+}
+
+// The left side moves right by `speed` per unit time; the right side is fixed, top and
+// bottom slide: a smooth compression, no inverted cell.
+std::string pointDisplacement(const std::string& speed)
+{
+    return header("pointVectorField", "0", "pointDisplacement") +
+           "dimensions [0 1 0 0 0 0 0];\ninternalField uniform (0 0 0);\nboundaryField\n{\n"
+           "    left { type uniformFixedValue; uniformValue table ((0 (0 0 0)) (1 (" +
+           speed +
+           " 0 0))); value uniform (0 0 0); }\n"
+           "    right { type fixedValue; value uniform (0 0 0); }\n"
+           "    \"(top|bottom)\" { type slip; }\n"
+           "    frontAndBack { type empty; }\n}\n";
+}
+
+// The case: 160 × 160 quadrilaterals on the unit square, one layer (mesh in binary, to read fast).
+void writeCase(const fs::path& caseDir)
+{
+    const PolyMesh mesh = makeExtruded2D(160, 160, Vector3{0, 0, 0}, Vector3{1, 1, 0.01});
+    io::FoamWriteOptions binary;
+    binary.binary = true;
+    io::writePolyMesh(caseDir / "constant" / "polyMesh", mesh, binary);
+    writeText(caseDir / "system" / "controlDict", controlDict(true));
+    writeText(caseDir / "constant" / "dynamicMeshDict",
+              header("dictionary", "constant", "dynamicMeshDict") +
+                  "dynamicFvMesh dynamicMotionSolverFvMesh;\nmotionSolver rigidBodyMotionSolver;\n"
+                  "rigidBodyMotionSolverCoeffs\n{\n    formulation linearized;\n    subSteps 1;\n}\n");
+    writeText(caseDir / "0" / "pointDisplacement", pointDisplacement("0.2"));
+}
+
+// Every file under `folder` with its bytes, by relative path.
+using Snapshot = std::map<std::string, std::string>;
+
+Snapshot snapshot(const fs::path& folder)
+{
+    Snapshot files;
+    for (const auto& entry : fs::recursive_directory_iterator(folder)) {
+        const std::string name = fs::relative(entry.path(), folder).string();
+        files[name] = entry.is_directory() ? std::string("<folder>") : readBytes(entry.path());
+    }
+    return files;
+}
+
+std::string describe(const Snapshot& files)
+{
+    std::string text;
+    for (const auto& [name, bytes] : files) text += " " + name + " (" + std::to_string(bytes.size()) + " bytes)";
+    return text;
+}
+
+// OpenFOAM's Time::findTimes takes every folder whose whole name reads as a scalar.
+bool readsAsTime(const std::string& name)
+{
+    if (name.empty()) return false;
+    char* end = nullptr;
+    std::strtod(name.c_str(), &end);
+    return end != name.c_str() && *end == '\0';
+}
+
+std::set<std::string> timeFolderNames(const fs::path& caseDir)
+{
+    std::set<std::string> names;
+    for (const auto& entry : fs::directory_iterator(caseDir)) {
+        const std::string name = entry.path().filename().string();
+        if (entry.is_directory() && readsAsTime(name) && name != "0") names.insert(name);
+    }
+    return names;
+}
+
+bool hasStagingFolder(const fs::path& caseDir)
+{
+    std::error_code error;
+    for (const auto& entry : fs::directory_iterator(caseDir, error)) {
+        if (entry.path().filename().string().find(".tmp-") != std::string::npos) return true;
+    }
+    return false;
+}
+
+// Size of the largest file named `name` inside a staging folder of the case (0: none yet).
+std::uintmax_t stagedFileSize(const fs::path& caseDir, const std::string& name)
+{
+    std::uintmax_t largest = 0;
+    std::error_code error;
+    for (const auto& entry : fs::directory_iterator(caseDir, error)) {
+        if (entry.path().filename().string().find(".tmp-") == std::string::npos) continue;
+        for (const fs::path& file : {entry.path() / "polyMesh" / name, entry.path() / name}) {
+            std::error_code sizeError;
+            const std::uintmax_t size = fs::file_size(file, sizeError);
+            if (!sizeError) largest = std::max(largest, size);
+        }
+    }
+    return largest;
+}
+
+struct ProcessRun {
+    bool killed = false;     // by our SIGKILL (or the shim's)
+    int exitStatus = -1;     // when it exited by itself
+    double seconds = 0.0;
+    std::string out;
+    std::string err;
+};
+
+// Runs rbmMoveMesh on the case with extra environment variables; `killWhen`, polled every
+// 0.2 ms, sends SIGKILL the first time it returns true.
+ProcessRun runMoveMesh(const fs::path& caseDir, const fs::path& logDir,
+                const std::vector<std::pair<std::string, std::string>>& extraEnvironment = {},
+                const std::function<bool(double)>& killWhen = {})
+{
+    fs::create_directories(logDir);
+    // The environment is built before fork: the child only calls async-signal-safe functions.
+    std::map<std::string, std::string> variables;
+    for (char** variable = environ; *variable; ++variable) {
+        const std::string text = *variable;
+        const std::size_t equals = text.find('=');
+        if (equals != std::string::npos) variables[text.substr(0, equals)] = text.substr(equals + 1);
+    }
+    variables["OPENBLAS_NUM_THREADS"] = "1";
+    variables["OMP_NUM_THREADS"] = "1";
+    for (const auto& [name, value] : extraEnvironment) variables[name] = value;
+    if (variables.count("LD_PRELOAD")) {
+        // In the sanitizer build the shim comes before the ASan runtime; tell ASan that is fine.
+        std::string& asan = variables["ASAN_OPTIONS"];
+        asan += (asan.empty() ? "" : ":") + std::string("verify_asan_link_order=0");
+    }
+    std::vector<std::string> storage;
+    for (const auto& [name, value] : variables) storage.push_back(name + "=" + value);
+    std::vector<char*> environment;
+    for (std::string& entry : storage) environment.push_back(entry.data());
+    environment.push_back(nullptr);
+    const std::string program = RBM_MOVE_MESH;
+    const std::string caseArgument = caseDir.string();
+    std::vector<char*> arguments = {const_cast<char*>(program.c_str()), const_cast<char*>("-case"),
+                                    const_cast<char*>(caseArgument.c_str()), nullptr};
+    const std::string outFile = (logDir / "stdout").string();
+    const std::string errFile = (logDir / "stderr").string();
+
+    ProcessRun run;
+    const Clock::time_point start = Clock::now();
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+        const int out = ::open(outFile.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        const int err = ::open(errFile.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        if (out < 0 || err < 0) ::_exit(126);
+        ::dup2(out, 1);
+        ::dup2(err, 2);
+        ::execve(program.c_str(), arguments.data(), environment.data());
+        ::_exit(127);
+    }
+    EXPECT_GT(pid, 0) << "fork failed";
+    int status = 0;
+    while (true) {
+        const pid_t done = ::waitpid(pid, &status, WNOHANG);
+        if (done == pid) break;
+        const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
+        if (killWhen && killWhen(elapsed)) {
+            ::kill(pid, SIGKILL);
+            ::waitpid(pid, &status, 0);
+            break;
+        }
+        if (elapsed > 600) {   // a hang: stop it, the test fails below
+            ::kill(pid, SIGKILL);
+            ::waitpid(pid, &status, 0);
+            ADD_FAILURE() << "rbmMoveMesh ran for more than 600 s";
+            break;
+        }
+        std::this_thread::sleep_for(std::chrono::microseconds(200));
+    }
+    run.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    run.killed = WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL;
+    if (WIFEXITED(status)) run.exitStatus = WEXITSTATUS(status);
+    run.out = readBytes(logDir / "stdout");
+    run.err = readBytes(logDir / "stderr");
+    return run;
+}
+
+void copyCase(const fs::path& from, const fs::path& to)
+{
+    fs::remove_all(to);
+    fs::copy(from, to, fs::copy_options::recursive);
+}
+
+// The case, its uninterrupted run and what it wrote.
+struct Reference {
+    fs::path pristine;                       // the case before any run
+    std::map<std::string, Snapshot> times;   // written time folders of the uninterrupted run
+    std::map<std::string, std::vector<Vector3>> points;
+    Snapshot inputs;                         // constant/, system/, 0/ of the pristine case
+    double seconds = 0.0;
+    std::vector<std::string> commits;        // the renames of TimeFolderWriter, in order
+};
+
+Snapshot inputsOf(const fs::path& caseDir)
+{
+    Snapshot files;
+    for (const char* folder : {"constant", "system", "0"}) {
+        for (const auto& [name, bytes] : snapshot(caseDir / folder)) files[std::string(folder) + "/" + name] = bytes;
+    }
+    return files;
+}
+
+Reference makeReference(const fs::path& root)
+{
+    Reference reference;
+    reference.pristine = root / "pristine";
+    writeCase(reference.pristine);
+    reference.inputs = inputsOf(reference.pristine);
+    const fs::path caseDir = root / "uninterrupted";
+    copyCase(reference.pristine, caseDir);
+    const fs::path renameLog = root / "renames.log";
+    const ProcessRun run = runMoveMesh(caseDir, root / "uninterruptedLog",
+                                {{"LD_PRELOAD", RBM_KILL_SHIM}, {"RBM_KILL_RENAME_LOG", renameLog.string()}});
+    EXPECT_EQ(run.exitStatus, 0) << run.out << run.err;
+    reference.seconds = run.seconds;
+    EXPECT_EQ(timeFolderNames(caseDir), std::set<std::string>(writtenTimes.begin(), writtenTimes.end()));
+    for (const std::string& time : writtenTimes) {
+        reference.times[time] = snapshot(caseDir / time);
+        reference.points[time] = io::readPolyMeshPoints(caseDir / time);
+        EXPECT_TRUE(reference.times[time].count("polyMesh/points.gz")) << describe(reference.times[time]);
+        EXPECT_TRUE(reference.times[time].count("pointDisplacement.gz")) << describe(reference.times[time]);
+    }
+    std::ifstream log(renameLog);
+    for (std::string line; std::getline(log, line);) reference.commits.push_back(line);
+    return reference;
+}
+
+// The checks after a kill. `complete` receives the written times found (each one verified
+// whole and identical to the uninterrupted run's).
+void expectNoPartialTimeFolder(const fs::path& caseDir, const Reference& reference, std::set<std::string>* complete = nullptr)
+{
+    EXPECT_EQ(inputsOf(caseDir), reference.inputs) << "constant/, system/ or 0/ changed";
+    for (const std::string& name : timeFolderNames(caseDir)) {
+        SCOPED_TRACE("time folder " + name);
+        const auto expected = reference.times.find(name);
+        if (expected == reference.times.end()) {
+            ADD_FAILURE() << "a folder OpenFOAM takes for a time, which the uninterrupted run does not write: " << name;
+            continue;
+        }
+        const Snapshot found = snapshot(caseDir / name);
+        EXPECT_TRUE(found == expected->second)
+            << "incomplete or different time folder: found" << describe(found) << "; expected"
+            << describe(expected->second);
+        if (found == expected->second) {
+            EXPECT_EQ(io::readPolyMeshPoints(caseDir / name), reference.points.at(name));
+            if (complete) complete->insert(name);
+        }
+    }
+}
+
+std::set<std::string> firstTimes(std::size_t count)
+{
+    return std::set<std::string>(writtenTimes.begin(), writtenTimes.begin() + static_cast<std::ptrdiff_t>(count));
+}
+
+class KillDuringWrite : public ::testing::Test {
+protected:
+    static void SetUpTestSuite()
+    {
+        root_ = new TempDir("reference");
+        reference_ = new Reference(makeReference(root_->path()));
+    }
+    static void TearDownTestSuite()
+    {
+        delete reference_;
+        delete root_;
+    }
+    static TempDir* root_;
+    static Reference* reference_;
+};
+
+TempDir* KillDuringWrite::root_ = nullptr;
+Reference* KillDuringWrite::reference_ = nullptr;
+
+TEST_F(KillDuringWrite, RightBeforeOrAfterEveryCommitTheCaseHoldsExactlyTheTimesCommittedSoFar)
+{
+    const Reference& reference = *reference_;
+    // One commit (a rename of the staging folder) per written time, and nothing else
+    // renamed from a staging folder.
+    ASSERT_EQ(reference.commits.size(), writtenTimes.size()) << ::testing::PrintToString(reference.commits);
+    for (std::size_t k = 0; k < writtenTimes.size(); ++k) {
+        EXPECT_NE(reference.commits[k].find(".tmp-"), std::string::npos);
+        EXPECT_NE(reference.commits[k].find("/" + writtenTimes[k]), std::string::npos) << reference.commits[k];
+    }
+    TempDir dir("commits");
+    for (std::size_t k = 1; k <= writtenTimes.size(); ++k) {
+        for (const std::string when : {"before", "after"}) {
+            SCOPED_TRACE("kill " + when + " commit " + std::to_string(k));
+            const fs::path caseDir = dir.path() / "case";
+            copyCase(reference.pristine, caseDir);
+            const ProcessRun run = runMoveMesh(caseDir, dir.path() / "log",
+                                        {{"LD_PRELOAD", RBM_KILL_SHIM},
+                                         {"RBM_KILL_AT_RENAME", std::to_string(k)},
+                                         {"RBM_KILL_WHEN", when}});
+            ASSERT_TRUE(run.killed) << "exit " << run.exitStatus << "\n" << run.out << run.err;
+            std::set<std::string> complete;
+            expectNoPartialTimeFolder(caseDir, reference, &complete);
+            EXPECT_EQ(complete, firstTimes(when == "before" ? k - 1 : k));
+            // The staging folder of the interrupted commit is all that is left besides.
+            EXPECT_EQ(hasStagingFolder(caseDir), when == "before");
+        }
+    }
+}
+
+TEST_F(KillDuringWrite, WhileAFileIsHalfWrittenNothingShowsAndARerunCompletesTheRun)
+{
+    const Reference& reference = *reference_;
+    TempDir dir("halfWritten");
+    // Kill once a staged file has this many bytes (gzip writes it in pieces as it goes).
+    for (const std::string file : {"points.gz", "pointDisplacement.gz"}) {
+        SCOPED_TRACE(file);
+        const fs::path caseDir = dir.path() / "case";
+        copyCase(reference.pristine, caseDir);
+        std::uintmax_t sizeAtKill = 0;
+        const ProcessRun run = runMoveMesh(caseDir, dir.path() / "log", {}, [&](double) {
+            sizeAtKill = stagedFileSize(caseDir, file);
+            return sizeAtKill > 0;
+        });
+        ASSERT_TRUE(run.killed) << "the run ended before " << file << " was being written: " << run.out << run.err;
+        // It really was mid-write: the staged file is shorter than the finished one.
+        EXPECT_LT(sizeAtKill, reference.times.at("0.1").at(file == "points.gz" ? "polyMesh/points.gz" : file).size());
+        EXPECT_TRUE(hasStagingFolder(caseDir));
+        std::set<std::string> complete;
+        expectNoPartialTimeFolder(caseDir, reference, &complete);
+        EXPECT_TRUE(complete.empty()) << "killed while writing the first time, yet " << complete.size() << " written";
+
+        // A rerun removes the staging folder and writes what the uninterrupted run wrote.
+        const ProcessRun rerun = runMoveMesh(caseDir, dir.path() / "rerunLog");
+        EXPECT_EQ(rerun.exitStatus, 0) << rerun.out << rerun.err;
+        EXPECT_NE(rerun.err.find("the unfinished time folder of an interrupted run"), std::string::npos) << rerun.err;
+        EXPECT_FALSE(hasStagingFolder(caseDir));
+        complete.clear();
+        expectNoPartialTimeFolder(caseDir, reference, &complete);
+        EXPECT_EQ(complete, firstTimes(writtenTimes.size()));
+    }
+}
+
+TEST_F(KillDuringWrite, AtAnyMomentOfTheRunEveryTimeFolderIsWholeOrAbsent)
+{
+    const Reference& reference = *reference_;
+    TempDir dir("timed");
+    int killed = 0;
+    int killedWithStagingFolder = 0;
+    for (const double fraction : {0.1, 0.3, 0.5, 0.65, 0.8, 0.95}) {
+        SCOPED_TRACE("kill at " + std::to_string(fraction) + " of " + std::to_string(reference.seconds) + " s");
+        const fs::path caseDir = dir.path() / "case";
+        copyCase(reference.pristine, caseDir);
+        bool stagingAtKill = false;
+        const ProcessRun run = runMoveMesh(caseDir, dir.path() / "log", {}, [&](double elapsed) {
+            if (elapsed < fraction * reference.seconds) return false;
+            stagingAtKill = hasStagingFolder(caseDir);
+            return true;
+        });
+        if (run.killed) {
+            ++killed;
+            killedWithStagingFolder += stagingAtKill;
+        } else {
+            EXPECT_EQ(run.exitStatus, 0) << run.out << run.err;   // finished before the kill: fine
+        }
+        expectNoPartialTimeFolder(caseDir, reference);
+    }
+    // Most moments fall inside the run (the last ones may come after a faster run's end).
+    EXPECT_GE(killed, 4);
+    RecordProperty("killed", killed);
+    RecordProperty("killedWithStagingFolder", killedWithStagingFolder);
+}
+
+TEST_F(KillDuringWrite, WhileReplacingAnEarlierRunsFoldersEachIsTheOldOrTheNewOneWhole)
+{
+    const Reference& reference = *reference_;
+    TempDir dir("replacing");
+    // An earlier run with another motion, uncompressed; a flow solver then added U to every
+    // time folder. The new run writes compressed files over them: points.gz must replace
+    // points (no stale twin), U must stay.
+    const fs::path earlier = dir.path() / "earlier";
+    copyCase(reference.pristine, earlier);
+    writeText(earlier / "system" / "controlDict", controlDict(false));
+    writeText(earlier / "0" / "pointDisplacement", pointDisplacement("0.1"));
+    const ProcessRun earlierRun = runMoveMesh(earlier, dir.path() / "earlierLog");
+    ASSERT_EQ(earlierRun.exitStatus, 0) << earlierRun.out << earlierRun.err;
+    for (const std::string& time : writtenTimes) writeText(earlier / time / "U", "velocity of time " + time + "\n");
+    fs::copy_file(reference.pristine / "system" / "controlDict", earlier / "system" / "controlDict",
+                  fs::copy_options::overwrite_existing);
+    fs::copy_file(reference.pristine / "0" / "pointDisplacement", earlier / "0" / "pointDisplacement",
+                  fs::copy_options::overwrite_existing);
+    std::map<std::string, Snapshot> oldTimes;
+    std::map<std::string, Snapshot> newTimes;
+    for (const std::string& time : writtenTimes) {
+        oldTimes[time] = snapshot(earlier / time);
+        ASSERT_TRUE(oldTimes[time].count("polyMesh/points")) << describe(oldTimes[time]);
+        newTimes[time] = reference.times.at(time);
+        newTimes[time]["U"] = "velocity of time " + time + "\n";
+        ASSERT_NE(oldTimes[time], newTimes[time]);
+    }
+
+    for (std::size_t k = 1; k <= writtenTimes.size(); ++k) {
+        for (const std::string when : {"before", "after"}) {
+            SCOPED_TRACE("kill " + when + " commit " + std::to_string(k));
+            const fs::path caseDir = dir.path() / "case";
+            copyCase(earlier, caseDir);
+            const ProcessRun run = runMoveMesh(caseDir, dir.path() / "log",
+                                        {{"LD_PRELOAD", RBM_KILL_SHIM},
+                                         {"RBM_KILL_AT_RENAME", std::to_string(k)},
+                                         {"RBM_KILL_WHEN", when}});
+            ASSERT_TRUE(run.killed) << "exit " << run.exitStatus << "\n" << run.out << run.err;
+            EXPECT_EQ(inputsOf(caseDir), reference.inputs);
+            EXPECT_EQ(timeFolderNames(caseDir), std::set<std::string>(writtenTimes.begin(), writtenTimes.end()));
+            const std::size_t replaced = when == "before" ? k - 1 : k;
+            for (std::size_t t = 0; t < writtenTimes.size(); ++t) {
+                const std::string& time = writtenTimes[t];
+                const Snapshot found = snapshot(caseDir / time);
+                const Snapshot& expected = t < replaced ? newTimes.at(time) : oldTimes.at(time);
+                EXPECT_TRUE(found == expected) << "time " << time << " (" << (t < replaced ? "new" : "old")
+                                               << " expected): found" << describe(found) << "; expected"
+                                               << describe(expected);
+            }
+        }
+    }
+}
+
+} // namespace
