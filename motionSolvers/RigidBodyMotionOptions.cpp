@@ -71,22 +71,40 @@ int readCount(const io::Entry& entry, int minimum)
 
 StiffeningOptions readStiffening(const io::Entry& entry)
 {
-    // OpenFOAM's diffusivity syntax (motionDiffusivity::New): [quadratic] inverseDistance (patches).
-    const std::string valid = "none; inverseDistance (patch ...); quadratic inverseDistance (patch ...)";
+    // OpenFOAM's diffusivity syntax (motionDiffusivity::New): [quadratic] inverseDistance (patches),
+    // and `power k inverseDistance (patches)`, a wrapper shaped like OpenFOAM's
+    // `exponential alpha <diffusivity>` (quadratic is power 2). The exponent comes before the
+    // diffusivity, not before the list: `inverseDistance 2 (a b)` would be OpenFOAM's sized list.
+    const std::string valid =
+        "none; inverseDistance (patch ...); quadratic inverseDistance (patch ...); power k inverseDistance (patch ...)";
     if (entry.isDictionary()) failAt(entry, "'stiffening' must be one of: " + valid);
     io::TokenStream stream = entry.stream();
     if (stream.atEnd()) failAt(entry, "'stiffening' has no value; valid forms are: " + valid);
     StiffeningOptions stiffening;
     stiffening.line = entry.line();
+    if (stream.peek().kind != io::Token::Kind::Word)
+        failAt(entry, "invalid stiffening '" + stream.peek().text + "'; valid forms are: " + valid);
     std::string word = stream.readWord();
     if (word == "none" || word == "uniform") {
         if (!stream.atEnd()) failAt(entry, "unexpected '" + stream.peek().text + "' after 'stiffening " + word + "'");
         return stiffening;
     }
-    stiffening.exponent = 1;
+    stiffening.exponent = 1.0;
     if (word == "quadratic") {
-        stiffening.exponent = 2;
+        stiffening.exponent = 2.0;
         if (stream.atEnd()) failAt(entry, "'stiffening quadratic' needs a diffusivity; valid forms are: " + valid);
+        word = stream.readWord();
+    } else if (word == "power") {
+        if (stream.atEnd() || stream.peek().kind != io::Token::Kind::Number)
+            failAt(entry, "'stiffening power' needs an exponent and a diffusivity, e.g. power 0.8 inverseDistance (wall)");
+        const std::string spelled = stream.peek().text;
+        stiffening.exponent = stream.readScalar();
+        if (!(stiffening.exponent > 0.0) || !(stiffening.exponent <= maxStiffeningExponent))
+            failAt(entry, "the exponent of 'stiffening power' must be in (0, " + std::to_string(int(maxStiffeningExponent)) +
+                              "], got " + spelled);
+        if (stream.atEnd() || stream.peek().kind != io::Token::Kind::Word)
+            failAt(entry, "'stiffening power " + spelled + "' needs a diffusivity, e.g. power " + spelled +
+                              " inverseDistance (wall)");
         word = stream.readWord();
     }
     if (word != "inverseDistance")
@@ -166,7 +184,10 @@ std::string RigidBodyMotionOptions::describe() const
     if (subSteps == 0) text << "auto";
     else text << subSteps;
     if (stiffening.exponent > 0) {
-        text << ", stiffening " << (stiffening.exponent == 2 ? "quadratic " : "") << "inverseDistance (";
+        text << ", stiffening ";
+        if (stiffening.exponent == 2.0) text << "quadratic ";
+        else if (stiffening.exponent != 1.0) text << "power " << stiffening.exponent << ' ';
+        text << "inverseDistance (";
         for (std::size_t k = 0; k < stiffening.patches.size(); ++k) text << (k ? " " : "") << stiffening.patches[k];
         text << ')';
     }

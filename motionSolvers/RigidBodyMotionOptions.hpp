@@ -18,7 +18,8 @@
 //         maxIterations     50;                   // nonlinear iterations (per sub-step)
 //         linearSolver      automatic;            // automatic | direct | iterative
 //         petscOptions      "-ksp_type cg -pc_type gamg";
-//         stiffening        quadratic inverseDistance (airfoil);   // or: inverseDistance (a b); none
+//         stiffening        quadratic inverseDistance (airfoil);   // or: inverseDistance (a b);
+//                                                 //     power 0.8 inverseDistance (a b); none
 //     }
 //
 // Unknown keywords are errors that name the file and line and list the valid keywords (a
@@ -43,14 +44,22 @@ enum class RbmFormulation { nonlinear, linearized };
 enum class RbmAlgorithm { newton, localGlobal };
 
 // Stiffening of the edges near chosen patches, OpenFOAM's diffusivity syntax
-// (`inverseDistance (patches)`, `quadratic inverseDistance (patches)`): w_ij is multiplied by
-// (h_min / d)^exponent, d the distance from the edge midpoint to the nearest face of the
-// patches in the reference mesh, clipped below at h_min, the shortest edge of the mesh.
+// (`inverseDistance (patches)`, `quadratic inverseDistance (patches)`, and the wrapper
+// `power k inverseDistance (patches)`, shaped like OpenFOAM's `exponential alpha <diffusivity>`):
+// w_ij is multiplied by (h_min / d)^exponent, d the distance from the edge midpoint to the
+// nearest face of the patches in the reference mesh, clipped below at h_min, the shortest
+// edge of the mesh.
 struct StiffeningOptions {
-    int exponent = 0;                  // 0: none; 1: inverseDistance; 2: quadratic inverseDistance
+    // 0: none; 1: inverseDistance; 2: quadratic inverseDistance; k: power k inverseDistance
+    // (0 < k ≤ maxStiffeningExponent).
+    double exponent = 0.0;
     std::vector<std::string> patches;  // patch names (or groups) as written
     int line = 0;                      // of the entry, for errors about the patch names
 };
+
+// Beyond this the far-field weights fall below rounding relative to the near ones on a
+// boundary-layer mesh ((h_min/d)^k with d/h_min ~ 1e6), and the systems become singular in practice.
+inline constexpr double maxStiffeningExponent = 4.0;
 
 struct RigidBodyMotionOptions {
     RbmCoupling coupling = RbmCoupling::coupled;

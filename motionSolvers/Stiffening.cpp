@@ -215,10 +215,10 @@ NearestSurface patchSurface(const PlanarMesh& planar, std::span<const Label> pla
 }
 
 std::vector<double> stiffeningFactors(const CellNeighbourGraph& graph, std::span<const Vector3> points, int dimension,
-                                      const NearestSurface& surface, int exponent)
+                                      const NearestSurface& surface, double exponent)
 {
     std::vector<double> factors(graph.neighbours.size(), 1.0);
-    if (exponent == 0 || surface.empty()) return factors;
+    if (exponent == 0.0 || surface.empty()) return factors;
     auto position = [&](Label node) {
         Vector3 p = points[node];
         if (dimension == 2) p.z = 0.0;
@@ -235,7 +235,9 @@ std::vector<double> stiffeningFactors(const CellNeighbourGraph& graph, std::span
             if (j < i) continue;  // set both directions from the i < j one: exactly symmetric
             const double d = std::max(surface.distance(0.5 * (position(i) + position(j))), shortest);
             const double ratio = shortest / d;
-            const double factor = exponent == 1 ? ratio : ratio * ratio;
+            const double factor = exponent == 1.0   ? ratio
+                                  : exponent == 2.0 ? ratio * ratio
+                                                    : std::pow(ratio, exponent);
             factors[e] = factor;
             // The reverse edge j → i.
             const auto row = graph.neighboursOf(j);

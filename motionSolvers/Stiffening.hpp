@@ -5,7 +5,8 @@
 //
 //     f_ij = (h_min / d_ij)^k,     d_ij = max(distance(midpoint of i–j, patches), h_min)
 //
-// with k = 1 (inverseDistance) or 2 (quadratic inverseDistance), the distance measured in
+// with k = 1 (inverseDistance), 2 (quadratic inverseDistance) or any k > 0 (power k
+// inverseDistance; docs/motionSolver.md has the measured choices), the distance measured in
 // the reference mesh to the nearest face of the patches (2D: the nearest boundary edge in
 // the plane), and h_min the shortest edge of the mesh, so that f ≤ 1 and the edges touching
 // the patches keep their weight while edges far away count less: the mesh near the patches
@@ -64,8 +65,9 @@ NearestSurface patchSurface(const PolyMesh& mesh, std::span<const Vector3> point
 NearestSurface patchSurface(const PlanarMesh& planar, std::span<const Label> planarPatches);
 
 // f_ij per directed edge of `graph` (same order as graph.neighbours), see the file comment.
-// 2D (dimension 2) uses the x and y of the points only. exponent 0 gives all ones.
+// 2D (dimension 2) uses the x and y of the points only. exponent 0 gives all ones; 1 and 2
+// are computed without std::pow (the same bits as before non-integer exponents existed).
 std::vector<double> stiffeningFactors(const CellNeighbourGraph& graph, std::span<const Vector3> points, int dimension,
-                                      const NearestSurface& surface, int exponent);
+                                      const NearestSurface& surface, double exponent);
 
 } // namespace rbm::motion

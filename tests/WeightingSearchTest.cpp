@@ -1,0 +1,661 @@
+// Edge weighting / stiffening against OpenFOAM's inverse-distance Laplacian on the thesis'
+// squares (issue 3), docs/motionSolver.md "Beating OpenFOAM's inverse-distance Laplacian".
+//
+//  - StiffeningPower.*: the option the search found (`stiffening power k inverseDistance
+//    (patches)`): its syntax and errors, its factors, its squares figures (below the
+//    Laplacian's) and the airfoils staying valid with it.
+//  - WeightingSearch.DISABLED_*: the search itself. It builds each case's RBM problem through
+//    the rigidBodyMotionSolver, then solves it with the coupled nonlinear core under candidate
+//    edge-weight factors and prints max non-orthogonality (checkMesh definition):
+//      weightingSearchTest --gtest_also_run_disabled_tests --gtest_filter='WeightingSearch.DISABLED_Search'
+//    environment: WSEARCH_CASES (rot,tr,bl4,bl10,naca), WSEARCH_ONLY ("a|b": candidates whose
+//    names contain a or b), WSEARCH_SUBSTEPS (equal steps), WSEARCH_SENSES (ccw, cw; largest angle).
+
+#include "PetscTestEnvironment.hpp"
+
+#include "CellNeighbourGraph.hpp"
+#include "CoupledNewtonSolver.hpp"
+#include "InputError.hpp"
+#include "MeshGenerators.hpp"
+#include "MeshGeometry.hpp"
+#include "MotionSolverRegistry.hpp"
+#include "PointPatchDisplacement.hpp"
+#include "PolyMeshReader.hpp"
+#include "PseudoTwoDExtraction.hpp"
+#include "QualityReport.hpp"
+#include "RigidBodyMotionOptions.hpp"
+#include "RigidBodyMotionSolver.hpp"
+#include "RbmEnergy.hpp"
+#include "Stiffening.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <deque>
+#include <functional>
+#include <map>
+#include <numbers>
+#include <string>
+
+namespace {
+
+using namespace rbm;
+using namespace rbm::motion;
+
+[[maybe_unused]] auto* const petscEnvironment =
+    ::testing::AddGlobalTestEnvironment(new rbm::test::PetscTestEnvironment);
+
+double degrees(double angle) { return angle * std::numbers::pi / 180.0; }
+
+struct RigidMotion {
+    double angle = 0.0;  // about +z
+    Vector3 centre;
+    Vector3 translation;
+    Vector3 displacement(const Vector3& x) const
+    {
+        const Matrix3 rotation = rotationFromVector({0.0, 0.0, angle});
+        return centre + rotation * (x - centre) + translation - x;
+    }
+};
+
+std::unique_ptr<MotionSolver> makeSolver(const PolyMesh& mesh, const std::string& coefficients)
+{
+    const io::Dictionary dict = io::Dictionary::parseText(
+        "motionSolver rigidBodyMotionSolver;\nrigidBodyMotionSolverCoeffs\n{\n" + coefficients + "\n}\n",
+        "constant/dynamicMeshDict");
+    return builtinMotionSolvers().create(mesh, dict, nullptr, "/nonexistent/case");
+}
+
+struct EdgeInfo {
+    double length = 0.0;
+    double movingDistance = 0.0;  // midpoint to the moving patch
+    double wallDistance = 0.0;    // midpoint to every patch but the empty planes (all prescribed in these cases)
+    double fixedDistance = 0.0;   // midpoint to those patches other than the moving one
+    double ring = 0.0;            // mean graph distance of the end nodes to the moving patch's nodes
+    double cellSize = 0.0;        // sqrt of the mean area of the cells around the end nodes
+    double shortest = 0.0;        // shortest edge of the mesh
+};
+
+struct SearchCase {
+    std::string name;
+    const PolyMesh* mesh = nullptr;
+    std::string movingPatch;
+    RigidMotion motion;
+    std::unique_ptr<MotionSolver> solver;
+    const RigidBodyMotionSolver* rbm = nullptr;
+    std::vector<Vector3> prescribed;
+    std::vector<EdgeInfo> edges;  // per directed edge
+};
+
+void setUp(SearchCase& c)
+{
+    c.solver = makeSolver(*c.mesh, "subSteps 1;");
+    const PolyMesh& mesh = *c.mesh;
+    for (const Patch& patch : mesh.patches) {
+        if (patch.type == "empty") continue;
+        const std::vector<Label> points = patchMeshPoints(mesh, mesh.findPatch(patch.name));
+        std::vector<Vector3> values;
+        for (Label p : points)
+            values.push_back(patch.name == c.movingPatch ? c.motion.displacement(mesh.points[p]) : Vector3{});
+        c.solver->setPatchDisplacement(patch.name, values);
+    }
+    const MotionSolveReport report = c.solver->solve();
+    c.rbm = &dynamic_cast<const RigidBodyMotionSolver&>(*c.solver);
+    std::printf("%s: default solver: %d inverted, %s\n", c.name.c_str(), report.invertedCellCount, report.reason.c_str());
+    c.prescribed = c.rbm->state().displacement;
+
+    const PseudoTwoDMesh& flat = *c.rbm->twoDMesh();
+    const PlanarMesh& planar = flat.planar;
+    const CellNeighbourGraph& graph = c.rbm->problem()->graph();
+    std::vector<Label> moving, walls, fixed;
+    for (Label p = 0; p < static_cast<Label>(planar.patches.size()); ++p) {
+        const std::string& name = mesh.patches[planar.patches[p].polyMeshPatch].name;
+        if (name == c.movingPatch) moving.push_back(p);
+        else fixed.push_back(p);
+        walls.push_back(p);
+    }
+    const NearestSurface movingSurface = patchSurface(planar, moving);
+    const NearestSurface wallSurface = patchSurface(planar, walls);
+    const NearestSurface fixedSurface = patchSurface(planar, fixed);
+    // Ring distance from the moving patch's nodes.
+    std::vector<int> ring(planar.nodeCount(), -1);
+    std::deque<Label> queue;
+    for (Label p : moving) {
+        const PlanarPatch& patch = planar.patches[p];
+        for (Label e = patch.startEdge; e < patch.startEdge + patch.edgeCount; ++e)
+            for (Label node : planar.edge(e))
+                if (ring[node] < 0) {
+                    ring[node] = 0;
+                    queue.push_back(node);
+                }
+    }
+    while (!queue.empty()) {
+        const Label i = queue.front();
+        queue.pop_front();
+        for (Label j : graph.neighboursOf(i))
+            if (ring[j] < 0) {
+                ring[j] = ring[i] + 1;
+                queue.push_back(j);
+            }
+    }
+    std::vector<double> areaSum(planar.nodeCount(), 0.0);
+    std::vector<int> areaCount(planar.nodeCount(), 0);
+    for (Label cell = 0; cell < planar.cellCount(); ++cell)
+        for (Label node : planar.cell(cell)) {
+            areaSum[node] += std::abs(planar.signedArea(cell));
+            ++areaCount[node];
+        }
+    const std::vector<Vector3>& x = c.rbm->problem()->referencePoints();
+    c.edges.assign(graph.neighbours.size(), {});
+    double shortest = 1e300;
+    for (Label i = 0; i < graph.nodeCount(); ++i)
+        for (Label e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e) {
+            const Label j = graph.neighbours[e];
+            Vector3 a = x[i], b = x[j];
+            a.z = b.z = 0.0;
+            EdgeInfo& info = c.edges[e];
+            info.length = norm(b - a);
+            shortest = std::min(shortest, info.length);
+            info.movingDistance = movingSurface.distance(0.5 * (a + b));
+            info.wallDistance = wallSurface.distance(0.5 * (a + b));
+            info.fixedDistance = fixedSurface.distance(0.5 * (a + b));
+            info.ring = 0.5 * (ring[i] + ring[j]);
+            info.cellSize = std::sqrt(0.5 * (areaSum[i] / areaCount[i] + areaSum[j] / areaCount[j]));
+        }
+    for (EdgeInfo& info : c.edges) info.shortest = shortest;
+}
+
+struct Outcome {
+    int inverted = 0;
+    double maxNonOrthogonality = 0.0;
+    double shapeMin = 0.0;
+    int iterations = 0;
+    bool converged = false;
+    double seconds = 0.0;
+    Vector3 worstAt;  // roughly where the worst face was before the motion
+};
+
+// factorOf(edge) multiplies the base weighting's w_ij; subSteps equal steps of the target.
+Outcome run(const SearchCase& c, EdgeWeighting weighting, const std::function<double(const EdgeInfo&)>& factorOf,
+            int subSteps = 1, double scale = 1.0)
+{
+    const RbmProblem& base = *c.rbm->problem();
+    RbmProblem problem(2, base.referencePoints(), base.sharedGraph(), base.constraints(), weighting);
+    std::vector<double> factors(c.edges.size());
+    for (std::size_t e = 0; e < c.edges.size(); ++e) factors[e] = factorOf(c.edges[e]);
+    problem.setEdgeWeightFactors(factors);
+    CoupledNewtonSolver solver(problem);
+    Outcome outcome;
+    RbmResult result;
+    const auto start = std::chrono::steady_clock::now();
+    for (int step = 1; step <= subSteps; ++step) {
+        std::vector<Vector3> target(c.prescribed.size());
+        for (std::size_t k = 0; k < target.size(); ++k) target[k] = (scale * step / subSteps) * c.prescribed[k];
+        result = solver.solve(target, step > 1 ? &result : nullptr);
+        outcome.iterations += result.iterations;
+    }
+    outcome.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    outcome.converged = result.converged;
+    const std::vector<Vector3> lifted = c.rbm->twoDMesh()->liftDisplacements(result.displacement);
+    std::vector<Vector3> points = c.mesh->points;
+    for (std::size_t p = 0; p < points.size(); ++p) points[p] += lifted[p];
+    QualityEvaluator evaluator(*c.mesh);
+    const QualityReport quality = evaluator.evaluate(points);
+    outcome.inverted = quality.invertedCellCount();
+    outcome.maxNonOrthogonality = quality.checkMesh.maxNonOrthogonality;
+    {
+        // Where the worst face is: its centre's (initial) distance to the moving patch and to the others.
+        const MeshGeometry& g = evaluator.geometry();
+        double worst = -1.0;
+        Label worstFace = 0;
+        for (Label f = 0; f < c.mesh->internalFaceCount(); ++f) {
+            const Vector3 d = g.cellCentres[c.mesh->neighbour[f]] - g.cellCentres[c.mesh->owner[f]];
+            const double cosine = dot(d, g.faceAreas[f]) / (norm(d) * norm(g.faceAreas[f]));
+            const double angle = std::acos(std::clamp(cosine, -1.0, 1.0)) * 180.0 / std::numbers::pi;
+            if (angle > worst) {
+                worst = angle;
+                worstFace = f;
+            }
+        }
+        outcome.worstAt = g.faceCentres[worstFace] - lifted[c.mesh->face(worstFace)[0]];
+    }
+    outcome.shapeMin = std::min(quality.thesis.quadrilateralShape.min,
+                                quality.thesis.triangleMeanRatio.count > 0 ? quality.thesis.triangleMeanRatio.min : 1.0);
+    return outcome;
+}
+
+double clippedPower(double hOverD, double k) { return std::pow(std::min(hOverD, 1.0), k); }
+
+struct Candidate {
+    std::string name;
+    EdgeWeighting weighting;
+    std::function<double(const EdgeInfo&)> factor;
+};
+
+// Every candidate of the table in docs/motionSolver.md ("Beating OpenFOAM's inverse-distance
+// Laplacian on the squares"); WSEARCH_ONLY="a|b" keeps those whose names contain a or b.
+std::vector<Candidate> candidates()
+{
+    const char* only = std::getenv("WSEARCH_ONLY");
+    constexpr EdgeWeighting squared = EdgeWeighting::inverseDistanceSquared;
+    std::vector<Candidate> list;
+    auto label = [](const char* what, double k) { return std::string(what) + std::to_string(k).substr(0, 4); };
+    // (h_min / max(d, h_min))^k for a distance d of the edge.
+    auto power = [](double EdgeInfo::*distance, double k) {
+        return [distance, k](const EdgeInfo& e) { return clippedPower(e.shortest / std::max(e.*distance, e.shortest), k); };
+    };
+    list.push_back({"1/d^2, none", squared, [](const EdgeInfo&) { return 1.0; }});
+    for (double k : {0.3, 0.4, 0.5, 0.6, 0.75, 0.8, 0.9, 1.0, 1.1, 1.25, 1.5, 2.0})
+        list.push_back({label("1/d^2, (hmin/dist)^", k), squared, power(&EdgeInfo::movingDistance, k)});
+    for (double clip : {0.5, 0.25})
+        list.push_back({label("1/d^2, (hmin/dist)^1 clipped at hmin x ", clip), squared, [clip](const EdgeInfo& e) {
+                            return clip * e.shortest / std::max(e.movingDistance, clip * e.shortest);
+                        }});
+    list.push_back({"uniform, (hmin/dist)^1", EdgeWeighting::uniform, power(&EdgeInfo::movingDistance, 1.0)});
+    list.push_back({"1/d, (hmin/dist)^1", EdgeWeighting::inverseDistance, power(&EdgeInfo::movingDistance, 1.0)});
+    for (double k : {0.75, 1.0, 1.25, 1.5, 2.0})
+        list.push_back({label("1/d^2, 1/(1+ring)^", k), squared, [k](const EdgeInfo& e) { return std::pow(1.0 + e.ring, -k); }});
+    for (double k : {1.0, 1.25})
+        list.push_back({label("1/d^2, (cellSize/dist)^", k), squared, [k](const EdgeInfo& e) {
+                            return std::pow(e.cellSize / std::max(e.movingDistance, e.cellSize), k);
+                        }});
+    list.push_back({"1/d^2, hmin^2/area", squared,
+                    [](const EdgeInfo& e) { return e.shortest * e.shortest / (e.cellSize * e.cellSize); }});
+    for (double k : {0.5, 0.75, 0.8, 0.85, 0.9, 1.0, 1.1, 1.25, 1.5, 2.0})
+        list.push_back({label("1/d^2, (hmin/wallDist)^", k), squared, power(&EdgeInfo::wallDistance, k)});
+    for (double k : {0.75, 1.0, 1.25})
+        list.push_back({label("uniform, (hmin/wallDist)^", k), EdgeWeighting::uniform, power(&EdgeInfo::wallDistance, k)});
+    for (auto [a, b] : std::vector<std::pair<double, double>>{{0.8, 0.25}, {0.9, 0.25}, {0.75, 0.2}})
+        list.push_back({label("1/d^2, (hmin/dist)^", a) + label(" (hmin/fixedDist)^", b), squared,
+                        [moving = power(&EdgeInfo::movingDistance, a), fixed = power(&EdgeInfo::fixedDistance, b)](
+                            const EdgeInfo& e) { return moving(e) * fixed(e); }});
+    for (auto [a, b] : std::vector<std::pair<double, double>>{{0.75, 0.25}, {0.6, 0.2}})
+        list.push_back({label("1/d^2, (hmin/dist)^", a) + label(" (hmin/wallDist)^", b), squared,
+                        [moving = power(&EdgeInfo::movingDistance, a), wall = power(&EdgeInfo::wallDistance, b)](
+                            const EdgeInfo& e) { return moving(e) * wall(e); }});
+    if (only) {
+        std::vector<Candidate> filtered;
+        // '|'-separated substrings of the candidate names.
+        std::vector<std::string> wanted;
+        std::string rest = only;
+        for (std::size_t bar; (bar = rest.find('|')) != std::string::npos; rest = rest.substr(bar + 1))
+            wanted.push_back(rest.substr(0, bar));
+        wanted.push_back(rest);
+        for (Candidate& candidate : list)
+            if (std::any_of(wanted.begin(), wanted.end(),
+                            [&](const std::string& w) { return candidate.name.find(w) != std::string::npos; }))
+                filtered.push_back(std::move(candidate));
+        return filtered;
+    }
+    return list;
+}
+
+const PolyMesh& readMesh(const std::string& path)
+{
+    static std::map<std::string, PolyMesh> meshes;
+    auto found = meshes.find(path);
+    if (found == meshes.end()) found = meshes.emplace(path, io::readPolyMesh(path)).first;
+    return found->second;
+}
+
+std::vector<std::unique_ptr<SearchCase>> searchCases()
+{
+    const std::string root = std::string(RBM_TEST_DATA_DIR) + "/../../";
+    std::vector<std::unique_ptr<SearchCase>> cases;
+    const char* which = std::getenv("WSEARCH_CASES");
+    const std::string selection = which ? which : "rot,tr";
+    auto add = [&](const std::string& key, const std::string& name, const std::string& mesh, const std::string& patch,
+                   RigidMotion motion) {
+        if (selection.find(key) == std::string::npos) return;
+        auto c = std::make_unique<SearchCase>();
+        c->name = name;
+        c->mesh = &readMesh(mesh);
+        c->movingPatch = patch;
+        c->motion = motion;
+        setUp(*c);
+        cases.push_back(std::move(c));
+    };
+    add("rot", "squares rotated 10", root + "tutorials/squares/rotating/constant/polyMesh", "innerSquare",
+        {degrees(10.0), {0, 0, 0}, {}});
+    add("tr", "squares translated (50,25)", root + "tutorials/squares/translated/constant/polyMesh", "innerSquare",
+        {0.0, {0, 0, 0}, {50, 25, 0}});
+    add("bl4", "BL airfoil 4", std::string(RBM_TEST_DATA_DIR) + "/airfoilBoundaryLayer/constant/polyMesh", "airfoil",
+        {degrees(4.0), {1, 0, 0}, {}});
+    add("bl10", "BL airfoil 10", std::string(RBM_TEST_DATA_DIR) + "/airfoilBoundaryLayer/constant/polyMesh", "airfoil",
+        {degrees(10.0), {1, 0, 0}, {}});
+    add("naca", "naca4415 4", root + "tutorials/naca4415/constant/polyMesh", "airfoil", {degrees(4.0), {1, 0, 0}, {}});
+    return cases;
+}
+
+TEST(WeightingSearch, DISABLED_Search)
+{
+    const auto cases = searchCases();
+    const char* steps = std::getenv("WSEARCH_SUBSTEPS");
+    const int subSteps = steps ? std::atoi(steps) : 1;
+    std::printf("| candidate |");
+    for (const auto& c : cases) std::printf(" %s: max N-O / inv / F min / it |", c->name.c_str());
+    std::printf("\n");
+    for (const Candidate& candidate : candidates()) {
+        std::printf("| %s |", candidate.name.c_str());
+        for (const auto& c : cases) {
+            const Outcome o = run(*c, candidate.weighting, candidate.factor, subSteps);
+            std::printf(" %.2f / %d / %.4f / %d%s at (%.0f %.0f) |", o.maxNonOrthogonality, o.inverted, o.shapeMin,
+                        o.iterations, o.converged ? "" : " NC", o.worstAt.x, o.worstAt.y);
+        }
+        std::printf("\n");
+        std::fflush(stdout);
+    }
+}
+
+} // namespace
+
+namespace {
+
+// The largest single-step rotation of the boundary-layer airfoil about its trailing edge
+// whose result is converged and has no inverted cell, per candidate (as
+// RigidBodyMotionSolverWeighting.DISABLED_MeasureLargestSingleStepAngle: scan, then bisect).
+TEST(WeightingSearch, DISABLED_LargestSingleStepAngle)
+{
+    SearchCase c;
+    c.name = "BL airfoil, 1 deg";
+    c.mesh = &readMesh(std::string(RBM_TEST_DATA_DIR) + "/airfoilBoundaryLayer/constant/polyMesh");
+    c.movingPatch = "airfoil";
+    const char* senses = std::getenv("WSEARCH_SENSES");
+    for (const double sense : senses && std::string(senses) == "cw" ? std::vector<double>{-1.0}
+                              : senses && std::string(senses) == "ccw" ? std::vector<double>{1.0}
+                                                                     : std::vector<double>{1.0, -1.0}) {
+        c.motion = {sense * degrees(1.0), {1, 0, 0}, {}};
+        setUp(c);
+        std::vector<double> scan{0.005, 0.01, 0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 3, 4};
+        for (double angle = 5.0; angle <= 180.0; angle += 5.0) scan.push_back(angle);
+        for (const Candidate& candidate : candidates()) {
+            // The prescribed displacement of a rotation by `angle` is not a multiple of the 1°
+            // one: rebuild it per angle.
+            auto fails = [&](double angle, std::string& why) {
+                SearchCase& mutableCase = c;
+                const RigidMotion turn{sense * degrees(angle), {1, 0, 0}, {}};
+                const PseudoTwoDMesh& flat = *c.rbm->twoDMesh();
+                std::vector<Vector3> saved = mutableCase.prescribed;
+                for (Label node = 0; node < flat.nodeCount(); ++node) {
+                    if (c.rbm->problem()->kind(node) != NodeKind::prescribed) continue;
+                    if (norm(saved[node]) == 0.0) continue;  // the far field
+                    Vector3 u = flat.frame.toLocal(turn.displacement(c.mesh->points[flat.frontPointOfNode[node]]));
+                    u.z = 0.0;
+                    mutableCase.prescribed[node] = u;
+                }
+                const Outcome o = run(c, candidate.weighting, candidate.factor);
+                mutableCase.prescribed = saved;
+                why = std::to_string(o.inverted) + " inverted" + (o.converged ? "" : ", not converged");
+                return o.inverted > 0 || !o.converged;
+            };
+            double valid = 0.0, invalid = -1.0;
+            std::string why, firstWhy;
+            for (const double angle : scan) {
+                if (fails(angle, why)) {
+                    invalid = angle;
+                    firstWhy = why;
+                    break;
+                }
+                valid = angle;
+            }
+            for (int k = 0; invalid > 0.0 && k < 6; ++k) {
+                const double angle = 0.5 * (valid + invalid);
+                if (fails(angle, why)) {
+                    invalid = angle;
+                    firstWhy = why;
+                } else {
+                    valid = angle;
+                }
+            }
+            std::printf("| %s | %s | %.4g | %.4g: %s |\n", candidate.name.c_str(), sense > 0 ? "ccw" : "cw", valid,
+                        invalid, firstWhy.c_str());
+            std::fflush(stdout);
+        }
+    }
+}
+
+} // namespace
+
+// ---------------------------------------------------------------------------------------
+// `stiffening power k inverseDistance (patches)`: the option the search above found, and the
+// figures docs/motionSolver.md reports for it.
+
+namespace {
+
+StiffeningOptions readStiffeningEntry(const std::string& entry)
+{
+    const io::Dictionary dict = io::Dictionary::parseText("c\n{\n" + entry + "\n}\n", "constant/dynamicMeshDict");
+    return RigidBodyMotionOptions::read(dict.subDictionary("c")).stiffening;
+}
+
+std::string stiffeningError(const std::string& entry)
+{
+    try {
+        readStiffeningEntry(entry);
+    } catch (const InputError& error) {
+        EXPECT_EQ(error.file(), "constant/dynamicMeshDict") << entry;
+        EXPECT_EQ(error.line(), 3) << entry;
+        return error.message();
+    }
+    return "no InputError";
+}
+
+TEST(StiffeningPower, ExponentComesAsAWrapperBeforeTheDiffusivity)
+{
+    const StiffeningOptions power = readStiffeningEntry("stiffening power 0.8 inverseDistance (innerSquare outerSquare);");
+    EXPECT_EQ(power.exponent, 0.8);
+    EXPECT_EQ(power.patches, (std::vector<std::string>{"innerSquare", "outerSquare"}));
+    // A sized list after the diffusivity stays a sized list (OpenFOAM's N( ... )).
+    const StiffeningOptions sized = readStiffeningEntry("stiffening power 1.5 inverseDistance 2(a b);");
+    EXPECT_EQ(sized.exponent, 1.5);
+    EXPECT_EQ(sized.patches, (std::vector<std::string>{"a", "b"}));
+    EXPECT_EQ(readStiffeningEntry("stiffening power 2 inverseDistance (a);").exponent, 2.0);
+    EXPECT_EQ(readStiffeningEntry("stiffening quadratic inverseDistance (a);").exponent, 2.0);
+    EXPECT_EQ(readStiffeningEntry("stiffening inverseDistance (a);").exponent, 1.0);
+    // The solver's one-line description (rbmMoveMesh prints it) spells the three forms back.
+    auto describe = [](const std::string& entry) {
+        const io::Dictionary dict = io::Dictionary::parseText("c\n{\n" + entry + "\n}\n", "constant/dynamicMeshDict");
+        return RigidBodyMotionOptions::read(dict.subDictionary("c")).describe();
+    };
+    EXPECT_NE(describe("stiffening power 0.8 inverseDistance (innerSquare outerSquare);")
+                  .find(", stiffening power 0.8 inverseDistance (innerSquare outerSquare)"),
+              std::string::npos);
+    EXPECT_NE(describe("stiffening power 2 inverseDistance (a);").find(", stiffening quadratic inverseDistance (a)"),
+              std::string::npos);
+    EXPECT_NE(describe("stiffening inverseDistance (a);").find(", stiffening inverseDistance (a)"), std::string::npos);
+
+    EXPECT_NE(stiffeningError("stiffening power inverseDistance (a);").find("needs an exponent"), std::string::npos);
+    EXPECT_NE(stiffeningError("stiffening power 0 inverseDistance (a);").find("must be in (0, 4], got 0"), std::string::npos);
+    EXPECT_NE(stiffeningError("stiffening power -1 inverseDistance (a);").find("must be in (0, 4], got -1"),
+              std::string::npos);
+    EXPECT_NE(stiffeningError("stiffening power 4.5 inverseDistance (a);").find("must be in (0, 4], got 4.5"),
+              std::string::npos);
+    EXPECT_NE(stiffeningError("stiffening power 0.8 (a);").find("'stiffening power 0.8' needs a diffusivity"),
+              std::string::npos);
+    EXPECT_NE(stiffeningError("stiffening power 0.8 inverseVolume (a);").find("invalid stiffening 'inverseVolume'"),
+              std::string::npos);
+    EXPECT_NE(stiffeningError("stiffening power 0.8 inverseDistance;").find("needs a list of patches"), std::string::npos);
+    EXPECT_NE(stiffeningError("stiffening 0.8 inverseDistance (a);").find("power k inverseDistance (patch ...)"),
+              std::string::npos);
+}
+
+TEST(StiffeningPower, FactorsAreThePowerOfTheClippedDistanceRatio)
+{
+    // Rows of unit squares above the bottom patch: a horizontal edge at height y has its
+    // midpoint at distance y, clipped at the shortest edge (1): f = max(y, 1)^−k.
+    const PolyMesh mesh = makeExtruded2D(4, 6, {0, 0, 0}, {4, 6, 1});
+    const PseudoTwoDMesh flat = extractPseudoTwoD(mesh);
+    const CellNeighbourGraph graph = buildCellNeighbourGraph(flat.planar);
+    std::vector<Label> bottom;
+    for (Label p = 0; p < static_cast<Label>(flat.planar.patches.size()); ++p)
+        if (flat.planar.patches[p].name == "bottom") bottom.push_back(p);
+    ASSERT_EQ(bottom.size(), 1u);
+    const NearestSurface surface = patchSurface(flat.planar, bottom);
+    for (const double exponent : {0.5, 0.8, 1.5}) {
+        const std::vector<double> factors = stiffeningFactors(graph, flat.planar.points, 2, surface, exponent);
+        int checked = 0;
+        for (Label i = 0; i < graph.nodeCount(); ++i) {
+            for (Label e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e) {
+                const Vector3& a = flat.planar.points[i];
+                const Vector3& b = flat.planar.points[graph.neighbours[e]];
+                if (a.y != b.y || a.x < 0.5 || a.x > 3.5 || b.x < 0.5 || b.x > 3.5) continue;
+                const double expected = std::exp(-exponent * std::log(std::max(a.y, 1.0)));
+                EXPECT_NEAR(factors[e], expected, 1e-14) << "y " << a.y << " k " << exponent;
+                ++checked;
+            }
+        }
+        EXPECT_GT(checked, 20);
+    }
+}
+
+// OpenFOAM v1912 displacementLaplacian with `diffusivity inverseDistance (innerSquare)` on the
+// same squares (issue 3's figures, checkMesh's max non-orthogonality): the target to beat.
+constexpr double laplacianRotatedMaxNonOrthogonality = 10.5;
+constexpr double laplacianTranslatedMaxNonOrthogonality = 13.4;
+
+struct TutorialRun {
+    MotionSolveReport report;
+    QualityReport quality;
+};
+
+// The tutorial's mesh, moved by the default solver with `coefficients`, the patch `moving`
+// following `motion`, every other patch fixed.
+TutorialRun moveTutorial(const std::string& tutorial, const std::string& moving, const RigidMotion& motion,
+                         const std::string& coefficients)
+{
+    const PolyMesh& mesh = readMesh(std::string(RBM_TEST_DATA_DIR) + "/../../tutorials/" + tutorial + "/constant/polyMesh");
+    auto solver = makeSolver(mesh, coefficients);
+    for (const Patch& patch : mesh.patches) {
+        if (patch.type == "empty") continue;
+        std::vector<Vector3> values;
+        for (Label p : patchMeshPoints(mesh, mesh.findPatch(patch.name)))
+            values.push_back(patch.name == moving ? motion.displacement(mesh.points[p]) : Vector3{});
+        solver->setPatchDisplacement(patch.name, values);
+    }
+    TutorialRun run;
+    run.report = solver->solve();
+    QualityEvaluator evaluator(mesh);
+    run.quality = evaluator.evaluate(solver->curPoints());
+    return run;
+}
+
+TEST(StiffeningPower, StiffeningNearBothSquaresBeatsTheInverseDistanceLaplacian)
+{
+    const std::string stiffening = "stiffening power 0.8 inverseDistance (innerSquare outerSquare);";
+    const TutorialRun rotated = moveTutorial("squares/rotating", "innerSquare", {degrees(10.0), {}, {}}, stiffening);
+    const TutorialRun translated = moveTutorial("squares/translated", "innerSquare", {0.0, {}, {50.0, 25.0, 0.0}}, stiffening);
+    for (const TutorialRun* run : {&rotated, &translated}) {
+        EXPECT_TRUE(run->report.converged) << run->report.reason;
+        EXPECT_EQ(run->report.subStepCount, 1);
+        EXPECT_EQ(run->report.invertedCellCount, 0);
+        EXPECT_EQ(run->quality.invertedCellCount(), 0);
+    }
+    std::printf("power 0.8 inverseDistance (innerSquare outerSquare): rotated max N-O %.2f, F_shape min %.4f; "
+                "translated max N-O %.2f, F_shape min %.4f\n",
+                rotated.quality.checkMesh.maxNonOrthogonality, rotated.quality.thesis.quadrilateralShape.min,
+                translated.quality.checkMesh.maxNonOrthogonality, translated.quality.thesis.quadrilateralShape.min);
+    EXPECT_LT(rotated.quality.checkMesh.maxNonOrthogonality, laplacianRotatedMaxNonOrthogonality);
+    EXPECT_LT(translated.quality.checkMesh.maxNonOrthogonality, laplacianTranslatedMaxNonOrthogonality);
+    // The figures of docs/motionSolver.md.
+    EXPECT_NEAR(rotated.quality.checkMesh.maxNonOrthogonality, 9.91, 0.01);
+    EXPECT_NEAR(translated.quality.checkMesh.maxNonOrthogonality, 11.89, 0.01);
+    // Without the outer square (distance to the moving square only, same exponent) the
+    // translated case stays above the Laplacian: the outer term is what makes it win there.
+    const TutorialRun innerOnly = moveTutorial("squares/translated", "innerSquare", {0.0, {}, {50.0, 25.0, 0.0}},
+                                               "stiffening power 0.8 inverseDistance (innerSquare);");
+    EXPECT_GT(innerOnly.quality.checkMesh.maxNonOrthogonality, laplacianTranslatedMaxNonOrthogonality);
+}
+
+TEST(StiffeningPower, AirfoilsStayValidWithTheSquaresSetting)
+{
+    // The same setting on the airfoils: stiffened towards the airfoil and the far field.
+    const std::string stiffening = "stiffening power 0.8 inverseDistance (airfoil farfield);";
+    const PolyMesh& boundaryLayer = readMesh(std::string(RBM_TEST_DATA_DIR) + "/airfoilBoundaryLayer/constant/polyMesh");
+    for (const double angle : {4.0, 10.0}) {
+        auto solver = makeSolver(boundaryLayer, stiffening);
+        ASSERT_FALSE(dynamic_cast<const RigidBodyMotionSolver&>(*solver).stiffeningFactors().empty());
+        const RigidMotion turn{degrees(angle), {1.0, 0.0, 0.0}, {}};
+        std::vector<Vector3> values;
+        for (Label p : patchMeshPoints(boundaryLayer, boundaryLayer.findPatch("airfoil")))
+            values.push_back(turn.displacement(boundaryLayer.points[p]));
+        solver->setPatchDisplacement("airfoil", values);
+        const MotionSolveReport report = solver->solve();
+        EXPECT_TRUE(report.converged) << angle << ": " << report.reason;
+        EXPECT_EQ(report.subStepCount, 1) << angle;
+        EXPECT_EQ(report.invertedCellCount, 0) << angle;
+        QualityEvaluator evaluator(boundaryLayer);
+        const QualityReport quality = evaluator.evaluate(solver->curPoints());
+        EXPECT_EQ(quality.invertedCellCount(), 0) << angle;
+        EXPECT_LT(quality.checkMesh.maxNonOrthogonality, 34.1) << angle;   // the initial mesh: 34.0
+    }
+    const TutorialRun naca = moveTutorial("naca4415", "airfoil", {degrees(4.0), {1.0, 0.0, 0.0}, {}}, stiffening);
+    EXPECT_TRUE(naca.report.converged) << naca.report.reason;
+    EXPECT_EQ(naca.report.invertedCellCount, 0);
+    EXPECT_EQ(naca.quality.invertedCellCount(), 0);
+}
+
+} // namespace
+
+namespace {
+
+// The same scan through the rigidBodyMotionSolver itself (subSteps 1, a fresh solver per
+// angle, its own inverted-cell count), as RigidBodyMotionSolverWeighting's
+// DISABLED_MeasureLargestSingleStepAngle, for the coefficient strings in WSEARCH_COEFFICIENTS
+// ('|'-separated; default: the squares' winner transferred to the airfoil).
+TEST(WeightingSearch, DISABLED_LargestSingleStepAngleThroughTheSolver)
+{
+    const PolyMesh& mesh = readMesh(std::string(RBM_TEST_DATA_DIR) + "/airfoilBoundaryLayer/constant/polyMesh");
+    const char* given = std::getenv("WSEARCH_COEFFICIENTS");
+    std::vector<std::string> coefficientSets;
+    std::string rest = given ? given : "subSteps 1; stiffening power 0.8 inverseDistance (airfoil farfield);";
+    for (std::size_t bar; (bar = rest.find('|')) != std::string::npos; rest = rest.substr(bar + 1))
+        coefficientSets.push_back(rest.substr(0, bar));
+    coefficientSets.push_back(rest);
+    const char* senses = std::getenv("WSEARCH_SENSES");
+    std::vector<double> scan{0.005, 0.01, 0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 3, 4};
+    for (double angle = 5.0; angle <= 180.0; angle += 5.0) scan.push_back(angle);
+    for (const double sense : senses && std::string(senses) == "cw" ? std::vector<double>{-1.0}
+                              : senses && std::string(senses) == "ccw" ? std::vector<double>{1.0}
+                                                                     : std::vector<double>{1.0, -1.0}) {
+        for (const std::string& coefficients : coefficientSets) {
+            auto fails = [&](double angle, std::string& why) {
+                auto solver = makeSolver(mesh, coefficients);
+                const RigidMotion turn{sense * degrees(angle), {1.0, 0.0, 0.0}, {}};
+                std::vector<Vector3> values;
+                for (Label p : patchMeshPoints(mesh, mesh.findPatch("airfoil"))) values.push_back(turn.displacement(mesh.points[p]));
+                solver->setPatchDisplacement("airfoil", values);
+                const MotionSolveReport report = solver->solve();
+                why = std::to_string(report.invertedCellCount) + " inverted, " + report.reason;
+                return report.invertedCellCount > 0 || !report.converged;
+            };
+            double valid = 0.0, invalid = -1.0;
+            std::string why, firstWhy;
+            for (const double angle : scan) {
+                if (fails(angle, why)) {
+                    invalid = angle;
+                    firstWhy = why;
+                    break;
+                }
+                valid = angle;
+            }
+            for (int k = 0; invalid > 0.0 && k < 6; ++k) {
+                const double angle = 0.5 * (valid + invalid);
+                if (fails(angle, why)) {
+                    invalid = angle;
+                    firstWhy = why;
+                } else {
+                    valid = angle;
+                }
+            }
+            std::printf("| %s | %s | %.4g | %.4g: %s |\n", coefficients.c_str(), sense > 0 ? "ccw" : "cw", valid, invalid,
+                        firstWhy.c_str());
+            std::fflush(stdout);
+        }
+    }
+}
+
+} // namespace
