@@ -50,6 +50,11 @@ void preferFastSingletonStart()
     setenv("OMPI_MCA_ess_singleton_isolated", "1", 0);
     setenv("OMPI_MCA_pml", "ob1", 0);
     setenv("OMPI_MCA_btl", "self,vader", 0);
+    // Isolated singletons all use job family 0, so concurrent ones (ctest -j) race on
+    // creating and removing the same session folder /tmp/ompi.<host>.<uid>/jf.0/: about one
+    // start in 80 failed with "A call to mkdir was unable to create the desired directory".
+    // A single process needs no session folder.
+    setenv("OMPI_MCA_orte_create_session_dirs", "0", 0);
 }
 
 } // namespace
