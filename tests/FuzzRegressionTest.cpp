@@ -4,6 +4,7 @@
 // be read or raise rbm::InputError, quickly. Then one test per bug fuzzing found, checking the
 // error the reader now gives (fuzz/README.md lists the findings).
 
+#include "ScratchFiles.hpp"
 #include "../fuzz/FuzzEntryPoints.hpp"
 
 #include <gtest/gtest.h>
@@ -21,13 +22,6 @@ using rbm::InputError;
 
 namespace {
 
-std::string readBytes(const fs::path& path)
-{
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream bytes;
-    bytes << in.rdbuf();
-    return bytes.str();
-}
 
 // Every file of fuzz/corpus/<target> and fuzz/regressions/<target>, sorted.
 std::vector<fs::path> inputsOf(const std::string& target)
@@ -51,7 +45,7 @@ std::size_t replay(const std::string& target, const std::function<void(std::stri
     EXPECT_GE(inputs.size(), 3u) << "no fuzz inputs found for " << target << " under " << RBM_FUZZ_DIR;
     std::size_t accepted = 0;
     for (const fs::path& input : inputs) {
-        const std::string bytes = readBytes(input);
+        const std::string bytes = rbm::test::readText(input);
         const auto start = std::chrono::steady_clock::now();
         try {
             entry(bytes);
@@ -196,7 +190,7 @@ fs::path pointFieldMeshWith(const std::string& file, const std::string& text)
 
 std::string fixtureText(const std::string& file)
 {
-    return readBytes(fs::path(RBM_TEST_DATA_DIR) / "dictionaries" / "pointField" / "ascii" / "constant" / "polyMesh" / file);
+    return rbm::test::readText(fs::path(RBM_TEST_DATA_DIR) / "dictionaries" / "pointField" / "ascii" / "constant" / "polyMesh" / file);
 }
 
 } // namespace

@@ -14,6 +14,7 @@
 //  - while the folders of an earlier run are being replaced: each must then be the old one
 //    or the new one, whole, with the flow solver's file kept.
 
+#include "ScratchFiles.hpp"
 #include "MeshGenerators.hpp"
 #include "PolyMeshReader.hpp"
 #include "PolyMeshWriter.hpp"
@@ -41,41 +42,18 @@ extern char** environ;
 
 namespace {
 
+using rbm::test::TempDir;
+using rbm::test::readText;
+using rbm::test::writeText;
+
 namespace fs = std::filesystem;
 using namespace rbm;
 using Clock = std::chrono::steady_clock;
 
 const std::vector<std::string> writtenTimes = {"0.1", "0.2", "0.3"};
 
-class TempDir {
-public:
-    explicit TempDir(const std::string& name)
-        : path_(fs::temp_directory_path() / ("rbmKillDuringWriteTest_" + name + "_" + std::to_string(::getpid())))
-    {
-        fs::remove_all(path_);
-        fs::create_directories(path_);
-    }
-    ~TempDir() { fs::remove_all(path_); }
-    const fs::path& path() const { return path_; }
 
-private:
-    fs::path path_;
-};
 
-void writeText(const fs::path& file, const std::string& text)
-{
-    fs::create_directories(file.parent_path());
-    std::ofstream out(file);
-    out << text;
-}
-
-std::string readBytes(const fs::path& file)
-{
-    std::ifstream in(file, std::ios::binary);
-    std::stringstream buffer;
-    buffer << in.rdbuf();
-    return buffer.str();
-}
 
 std::string header(const std::string& className, const std::string& location, const std::string& object)
 {
@@ -129,7 +107,7 @@ Snapshot snapshot(const fs::path& folder)
     Snapshot files;
     for (const auto& entry : fs::recursive_directory_iterator(folder)) {
         const std::string name = fs::relative(entry.path(), folder).string();
-        files[name] = entry.is_directory() ? std::string("<folder>") : readBytes(entry.path());
+        files[name] = entry.is_directory() ? std::string("<folder>") : readText(entry.path());
     }
     return files;
 }
@@ -261,8 +239,8 @@ ProcessRun runMoveMesh(const fs::path& caseDir, const fs::path& logDir,
     run.seconds = std::chrono::duration<double>(Clock::now() - start).count();
     run.killed = WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL;
     if (WIFEXITED(status)) run.exitStatus = WEXITSTATUS(status);
-    run.out = readBytes(logDir / "stdout");
-    run.err = readBytes(logDir / "stderr");
+    run.out = readText(logDir / "stdout");
+    run.err = readText(logDir / "stderr");
     return run;
 }
 

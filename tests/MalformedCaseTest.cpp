@@ -8,6 +8,7 @@
 // added. The line numbers are those of the spoilt entries in the committed files (the ascii
 // files OpenFOAM writes have a 16-line banner and header, a blank line, then the list size).
 
+#include "ScratchFiles.hpp"
 #include "MoveMeshRun.hpp"
 #include "PetscTestEnvironment.hpp"
 
@@ -40,20 +41,13 @@ struct Malformed {
 
 void PrintTo(const Malformed& malformed, std::ostream* out) { *out << malformed.name; }
 
-std::string readBytes(const fs::path& file)
-{
-    std::ifstream in(file, std::ios::binary);
-    std::stringstream buffer;
-    buffer << in.rdbuf();
-    return buffer.str();
-}
 
 // Every file and folder of the case with its bytes.
 std::map<std::string, std::string> snapshot(const fs::path& root)
 {
     std::map<std::string, std::string> files;
     for (const auto& entry : fs::recursive_directory_iterator(root)) {
-        files[fs::relative(entry.path(), root).string()] = entry.is_directory() ? "<folder>" : readBytes(entry.path());
+        files[fs::relative(entry.path(), root).string()] = entry.is_directory() ? "<folder>" : rbm::test::readText(entry.path());
     }
     return files;
 }

@@ -6,6 +6,7 @@
 // the initial mesh; a rigid translation keeps every cell a perfect cube; a boundary that
 // turns inside out forces an inverted cell).
 
+#include "ScratchFiles.hpp"
 #include "FoamDictionaryWriter.hpp"
 #include "MeshGenerators.hpp"
 #include "MoveMeshRun.hpp"
@@ -45,40 +46,17 @@ static auto* const petscEnvironment = ::testing::AddGlobalTestEnvironment(new rb
 
 namespace {
 
+using rbm::test::TempDir;
+using rbm::test::readText;
+using rbm::test::writeText;
+
 namespace fs = std::filesystem;
 using namespace rbm;
 
 // ---- helpers ------------------------------------------------------------------------------------
 
-class TempDir {
-public:
-    explicit TempDir(const std::string& name)
-        : path_(fs::temp_directory_path() / ("rbmMoveMeshRunTest_" + name + "_" + std::to_string(::getpid())))
-    {
-        fs::remove_all(path_);
-        fs::create_directories(path_);
-    }
-    ~TempDir() { fs::remove_all(path_); }
-    const fs::path& path() const { return path_; }
 
-private:
-    fs::path path_;
-};
 
-void writeText(const fs::path& file, const std::string& text)
-{
-    fs::create_directories(file.parent_path());
-    std::ofstream out(file);
-    out << text;
-}
-
-std::string readText(const fs::path& file)
-{
-    std::ifstream in(file);
-    std::stringstream buffer;
-    buffer << in.rdbuf();
-    return buffer.str();
-}
 
 std::string header(const std::string& className, const std::string& location, const std::string& object)
 {

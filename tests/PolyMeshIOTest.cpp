@@ -4,6 +4,7 @@
 // one two-block mesh, 10 x 5 x 4 = 200 cells, graded 3:1 in y, in six on-disk variants. The
 // expected numbers below are derived from its blockMeshDict, not read from the files.
 
+#include "ScratchFiles.hpp"
 #include "CompressedFile.hpp"
 #include "FoamDictionary.hpp"
 #include "FoamListIO.hpp"
@@ -33,6 +34,10 @@ using rbm::io::FoamWriteOptions;
 
 namespace {
 
+using rbm::test::TempDir;
+using rbm::test::readText;
+using rbm::test::writeText;
+
 const fs::path formatsDir = fs::path(RBM_TEST_DATA_DIR) / "formats";
 
 fs::path polyMeshOf(const std::string& variant)
@@ -56,32 +61,8 @@ double gradedY(int j)
 }
 
 // A fresh temporary folder per test.
-class TempDir {
-public:
-    explicit TempDir(const std::string& name)
-        : path_(fs::temp_directory_path() / ("rbmPolyMeshIOTest_" + name + "_" + std::to_string(::getpid())))
-    {
-        fs::remove_all(path_);
-        fs::create_directories(path_);
-    }
-    ~TempDir() { fs::remove_all(path_); }
-    const fs::path& path() const { return path_; }
 
-private:
-    fs::path path_;
-};
 
-std::string readText(const fs::path& path)
-{
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), {}};
-}
-
-void writeText(const fs::path& path, const std::string& text)
-{
-    std::ofstream out(path, std::ios::binary | std::ios::trunc);
-    out << text;
-}
 
 // Copies a fixture's polyMesh into `dir`/polyMesh and returns that folder.
 fs::path copyPolyMesh(const std::string& variant, const fs::path& dir)
