@@ -476,17 +476,22 @@ void MoveMeshRun::checkMemory() const
     std::ostringstream message;
     message << "the solve needs about " << motion::formatBytes(needed.bytes) << " of memory, but only "
             << motion::formatBytes(available->bytes) << " is available (" << available->source << "): "
-            << rbmOptions.describe() << ", " << (needed.direct ? "direct factorisation" : "Krylov + multigrid")
+            << rbmOptions.describe() << ", "
+            << (needed.direct ? "direct factorisation" : needed.matrixFree ? "matrix-free Krylov" : "Krylov + multigrid")
             << " of " << general(needed.rows, 10) << " unknowns (" << general(size.unknownNodes, 10) << " nodes in "
             << size.dimension << "D)";
     if (systems > 1) message << ", " << systems << " systems at once (linearized sub-steps)";
     message << ".";
-    if (needed.direct) {
-        const motion::MemoryEstimate iterative =
-            motion::estimateSolveMemory(variant, size, motion::LinearSolverKind::iterative, systems);
-        if (iterative.bytes <= available->bytes) {
-            message << " With 'linearSolver iterative;' in " << coefficientsName << " (constant/dynamicMeshDict) it needs about "
-                    << motion::formatBytes(iterative.bytes) << ".";
+    // The leanest alternative that fits: matrix-free (linearized only), else assembled Krylov.
+    for (const motion::LinearSolverKind alternative : {motion::LinearSolverKind::matrixFree, motion::LinearSolverKind::iterative}) {
+        if (alternative == rbmOptions.linearSolver || needed.matrixFree) break;
+        if (alternative == motion::LinearSolverKind::matrixFree && variant != motion::SolveVariant::coupledLinearized)
+            continue;
+        const motion::MemoryEstimate other = motion::estimateSolveMemory(variant, size, alternative, systems);
+        if (other.bytes < needed.bytes && other.bytes <= available->bytes) {
+            message << " With 'linearSolver " << motion::linearSolverName(alternative) << ";' in " << coefficientsName
+                    << " (constant/dynamicMeshDict) it needs about " << motion::formatBytes(other.bytes) << ".";
+            break;
         }
     }
     message << " Run it on a machine with more memory, or coarsen the mesh.";

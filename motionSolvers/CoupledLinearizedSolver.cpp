@@ -11,6 +11,11 @@ namespace rbm::motion {
 CoupledLinearizedSolver::CoupledLinearizedSolver(const RbmProblem& problem, CoupledLinearizedOptions options)
     : problem_(problem), options_(options)
 {
+    if (problem.unknownNodeCount() > 0 &&
+        matrixFreeChosen(options.linearSolver, problem.dimension(), problem.unknownCount())) {
+        matrixFree_ = std::make_unique<MatrixFreeLinearizedSystem>(problem, options.relativeTolerance);
+        return;
+    }
     const BlockPattern& pattern = problem.blockPattern();
     const int bs = problem.blockSize();
     system_ = std::make_unique<BlockSystemSolver>(pattern.rowOffsets, pattern.columns, bs,
@@ -31,6 +36,7 @@ std::vector<double> CoupledLinearizedSolver::solveUnknowns(std::span<const Vecto
                                                            const RbmState* initialGuess,
                                                            BlockSystemSolver::Report& report)
 {
+    if (matrixFree_) return matrixFree_->solveUnknowns(prescribedDisplacement, initialGuess, report);
     const RbmEnergy energy(problem_, RotationModel::smallAngle, prescribedDisplacement);
     // Start point z0: zero, except the normal offset c n of sliding nodes; E is quadratic,
     // so the minimiser over z0 + range(P) is z0 + δ with (P H P) δ = −P ∇E(z0).

@@ -13,6 +13,7 @@
 // Result: iterations = 1, linearIterations = Krylov iterations (0 for direct),
 // residualNorm = ‖P ∇E_linearized‖ at the result, energy = the EXACT energy E there.
 
+#include "MatrixFreeLinearizedSystem.hpp"
 #include "PetscSupport.hpp"
 #include "RbmProblem.hpp"
 
@@ -40,7 +41,8 @@ public:
 private:
     const RbmProblem& problem_;
     CoupledLinearizedOptions options_;
-    std::unique_ptr<BlockSystemSolver> system_;
+    std::unique_ptr<BlockSystemSolver> system_;              // assembled H (direct or CG + GAMG)
+    std::unique_ptr<MatrixFreeLinearizedSystem> matrixFree_;  // or the reduced system, unassembled
 };
 
 } // namespace rbm::motion

@@ -30,6 +30,11 @@ constexpr double nestedDissectionConstant = 11.0;
 constexpr double factorBytesPerValue = 12.0;
 // Krylov + multigrid: assembled blocks (8), PETSc's AIJ copy (8 + 4), the hierarchy (~18).
 constexpr double iterativeBytesPerValue = 8.0 + 12.0 + 18.0;
+// Matrix-free linearized (MatrixFreeLinearizedSystem.hpp): the scalar displacement Laplacian,
+// one value per block (its CSR copy and PETSc's AIJ, 8 + 12) and its multigrid hierarchy
+// (~20), plus the Krylov vectors and the per-node rotation maps.
+constexpr double matrixFreeBytesPerBlock = 8.0 + 12.0 + 20.0;
+constexpr double matrixFreeBytesPerNode = 400.0;
 
 double variantFactor(SolveVariant variant)
 {
@@ -123,7 +128,15 @@ MemoryEstimate estimateSolveMemory(SolveVariant variant, const SolveSize& size, 
                       (linearSolver == LinearSolverKind::automatic &&
                        (size.dimension == 2 || estimate.rows <= directSolverRowLimit));
     const double factor = variantFactor(variant) * std::max(systems, 1);
-    if (estimate.direct) {
+    const bool matrixFree = variant == SolveVariant::coupledLinearized &&
+                            (linearSolver == LinearSolverKind::matrixFree ||
+                             (linearSolver == LinearSolverKind::automatic && size.dimension == 3 &&
+                              estimate.rows > directSolverRowLimit));
+    if (matrixFree) {
+        estimate.direct = false;
+        estimate.matrixFree = true;
+        estimate.bytes = factor * (size.blocks * matrixFreeBytesPerBlock + size.unknownNodes * matrixFreeBytesPerNode);
+    } else if (estimate.direct) {
         double bytes = estimate.rows * directBytesPerRowLog * std::log2(std::max(estimate.rows, 2.0));
         if (size.dimension == 3) {
             const double b = scalarLaplacian ? 1.0 : blockSize;

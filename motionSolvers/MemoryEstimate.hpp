@@ -11,7 +11,10 @@
 //    n^(2/3) nodes, dense blocks of the b × b node blocks): 12 bytes × 11 b² n^(4/3), n
 //    unknown nodes, b = 6, fitted to peaks measured on hex boxes (MemoryEstimate.cpp);
 //  - Krylov + multigrid (3D above the row limit, or `linearSolver iterative`): the assembled
-//    block array, PETSc's AIJ copy and the multigrid hierarchy, about 38 bytes per stored value.
+//    block array, PETSc's AIJ copy and the multigrid hierarchy, about 38 bytes per stored value;
+//  - matrix-free linearized (3D above the row limit on one rank, or `linearSolver matrixFree`):
+//    the scalar displacement Laplacian and its multigrid, ~40 bytes per block, plus ~400 bytes
+//    per node (MemoryEstimate.cpp).
 // and per variant: Newton keeps an LU of its Hessian besides the linearized Cholesky factor
 // (× 2.3 measured); decoupled linearized solves two systems (× 2); decoupled nonlinear and
 // local/global factorise one scalar Laplacian over the nodes (rows = unknown nodes, one value
@@ -55,6 +58,7 @@ struct MemoryEstimate {
     double bytes = 0.0;
     double rows = 0.0;   // scalar unknowns of the largest system
     bool direct = false; // a sparse factorisation (else Krylov + multigrid)
+    bool matrixFree = false;  // the linearized system unassembled (MatrixFreeLinearizedSystem.hpp)
 };
 
 // The estimate for one variant. `systems`: how many such systems are alive at once (2 for

@@ -136,6 +136,8 @@ enum class LinearSolverKind {
     automatic,  // direct factorisation for 2D and small problems, Krylov + multigrid otherwise
     direct,     // LU, or Cholesky for symmetric positive definite matrices (MUMPS if present)
     iterative,  // CG + GAMG (symmetric positive definite), GMRES + GAMG (symmetric), GMRES + ILU
+    matrixFree, // the coupled linearized system unassembled (MatrixFreeLinearizedSystem.hpp); systems
+                // that need their matrix (Newton's Hessian, the Laplacians) solve as `iterative`
 };
 
 // Direct factorisation is the automatic choice in 2D and, in 3D, up to this many scalar

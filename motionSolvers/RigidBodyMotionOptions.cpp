@@ -139,6 +139,7 @@ std::string_view linearSolverName(LinearSolverKind kind)
     case LinearSolverKind::automatic: return "automatic";
     case LinearSolverKind::direct: return "direct";
     case LinearSolverKind::iterative: return "iterative";
+    case LinearSolverKind::matrixFree: return "matrixFree";
     }
     return "?";
 }
@@ -240,10 +241,11 @@ RigidBodyMotionOptions RigidBodyMotionOptions::read(const io::Dictionary& coeffi
         } else if (keyword == "maxIterations") {
             options.maxIterations = readCount(entry, 1);
         } else if (keyword == "linearSolver") {
-            const std::string kind = readChoice(entry, {"automatic", "direct", "iterative"});
-            options.linearSolver = kind == "automatic" ? LinearSolverKind::automatic
-                                   : kind == "direct"  ? LinearSolverKind::direct
-                                                       : LinearSolverKind::iterative;
+            const std::string kind = readChoice(entry, {"automatic", "direct", "iterative", "matrixFree"});
+            options.linearSolver = kind == "automatic"   ? LinearSolverKind::automatic
+                                   : kind == "direct"    ? LinearSolverKind::direct
+                                   : kind == "iterative" ? LinearSolverKind::iterative
+                                                         : LinearSolverKind::matrixFree;
         } else if (keyword == "petscOptions") {
             if (entry.isDictionary()) failAt(entry, "'petscOptions' must be a string, e.g. \"-ksp_type cg\"");
             io::TokenStream stream = entry.stream();

@@ -16,7 +16,7 @@
 //         tolerance         1e-11;                // nonlinear convergence, relative to the cell size
 //         relativeTolerance 1e-10;                // Newton's gradient reduction; Krylov tolerance
 //         maxIterations     50;                   // nonlinear iterations (per sub-step)
-//         linearSolver      automatic;            // automatic | direct | iterative
+//         linearSolver      automatic;            // automatic | direct | iterative | matrixFree
 //         petscOptions      "-ksp_type cg -pc_type gamg";
 //         stiffening        quadratic inverseDistance (airfoil);   // or: inverseDistance (a b);
 //                                                 //     power 0.8 inverseDistance (a b); none

@@ -72,13 +72,21 @@ TEST(MemoryEstimate, ModelFiguresFollowTheirFormulas)
     EXPECT_DOUBLE_EQ(estimateSolveMemory(SolveVariant::decoupledNonlinear, twoD).bytes, 63.0 * 130.0 * std::log2(63.0));
     EXPECT_TRUE(estimateSolveMemory(SolveVariant::coupledNewton, twoD).direct);
 
-    // 3D, 10 000 unknown nodes = 60 000 rows > directSolverRowLimit: Krylov + multigrid,
-    // 38 bytes per stored value, 36 values a block.
+    // 3D, 10 000 unknown nodes = 60 000 rows > directSolverRowLimit: the linearized system
+    // is solved matrix-free, 40 bytes a block (the scalar Laplacian and its multigrid) and 400
+    // a node; asked for `iterative`: Krylov + multigrid on the assembled blocks, 38 bytes per
+    // stored value, 36 values a block; Newton's Hessian is always assembled.
     SolveSize threeD{3, 10000.0, 270000.0};
-    const MemoryEstimate iterative = estimateSolveMemory(SolveVariant::coupledLinearized, threeD);
+    const MemoryEstimate matrixFree = estimateSolveMemory(SolveVariant::coupledLinearized, threeD);
+    EXPECT_FALSE(matrixFree.direct);
+    EXPECT_DOUBLE_EQ(matrixFree.bytes, 270000.0 * 40.0 + 10000.0 * 400.0);
+    const MemoryEstimate iterative =
+        estimateSolveMemory(SolveVariant::coupledLinearized, threeD, LinearSolverKind::iterative);
     EXPECT_FALSE(iterative.direct);
     EXPECT_EQ(iterative.rows, 60000.0);
     EXPECT_DOUBLE_EQ(iterative.bytes, 270000.0 * 36.0 * 38.0);
+    EXPECT_DOUBLE_EQ(estimateSolveMemory(SolveVariant::coupledNewton, threeD, LinearSolverKind::matrixFree).bytes,
+                     2.3 * 270000.0 * 36.0 * 38.0);
     // Forced direct: the nested-dissection fill 12 · 11 · 36 · n^(4/3) (4 752 bytes per
     // n^(4/3): 1.02 GiB here) exceeds 130 log2(rows) a row (124 MB).
     const MemoryEstimate direct = estimateSolveMemory(SolveVariant::coupledLinearized, threeD, LinearSolverKind::direct);

@@ -1,0 +1,246 @@
+// Tests of the matrix-free coupled linearized solve (MatrixFreeLinearizedSystem,
+// ReducedLinearizedOperator): the reduced gradient against finite differences and against the
+// full linearized energy, and the solution against the assembled, directly factorised
+// system, in 2D and 3D, with free, prescribed, sliding and mirror nodes.
+
+#include "CoupledLinearizedSolver.hpp"
+#include "MatrixFreeLinearizedSystem.hpp"
+#include "PetscTestEnvironment.hpp"
+#include "RbmEnergy.hpp"
+#include "RbmProblem.hpp"
+#include "ReducedLinearizedOperator.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <random>
+#include <vector>
+
+static ::testing::Environment* const petscEnvironment =
+    ::testing::AddGlobalTestEnvironment(new rbm::test::PetscTestEnvironment);
+
+namespace rbm::motion {
+namespace {
+
+// A jittered structured grid of n^d cells over [0,1]^d (2D: quadrilaterals), its cell-neighbour
+// graph built from the cells, and node classes: the bottom (y = 0 in 2D, z = 0 in 3D) fixed,
+// the top prescribed, the left side (x = 0) sliding on its plane (a mirror in 3D when asked),
+// the right side (x = 1) sliding but no mirror, everything else free.
+struct GridCase {
+    int dimension = 3;
+    std::vector<Vector3> points;
+    std::unique_ptr<RbmProblem> problem;
+    std::vector<Vector3> prescribed;
+};
+
+GridCase gridCase(int dimension, int n, bool mirror, unsigned seed)
+{
+    GridCase c;
+    c.dimension = dimension;
+    const int layers = dimension == 3 ? n + 1 : 1;
+    auto index = [&](int i, int j, int k) { return i + (n + 1) * (j + (n + 1) * k); };
+    std::mt19937 random(seed);
+    std::uniform_real_distribution<double> jitter(-0.2 / n, 0.2 / n);
+    for (int k = 0; k < layers; ++k)
+        for (int j = 0; j <= n; ++j)
+            for (int i = 0; i <= n; ++i) {
+                Vector3 p{double(i) / n, double(j) / n, dimension == 3 ? double(k) / n : 0.0};
+                const bool interior = i > 0 && i < n && j > 0 && j < n && (dimension == 2 || (k > 0 && k < n));
+                if (interior) {
+                    p.x += jitter(random);
+                    p.y += jitter(random);
+                    if (dimension == 3) p.z += jitter(random);
+                }
+                c.points.push_back(p);
+            }
+    // Cells as point lists; neighbours = points sharing a cell.
+    const int nodeCount = static_cast<int>(c.points.size());
+    std::vector<std::vector<int>> neighbours(nodeCount);
+    auto addCell = [&](const std::vector<int>& cell) {
+        for (int a : cell)
+            for (int b : cell)
+                if (a != b) neighbours[a].push_back(b);
+    };
+    for (int k = 0; k < (dimension == 3 ? n : 1); ++k)
+        for (int j = 0; j < n; ++j)
+            for (int i = 0; i < n; ++i) {
+                std::vector<int> cell;
+                for (int dk = 0; dk < (dimension == 3 ? 2 : 1); ++dk)
+                    for (int dj = 0; dj < 2; ++dj)
+                        for (int di = 0; di < 2; ++di) cell.push_back(index(i + di, j + dj, k + dk));
+                addCell(cell);
+            }
+    CellNeighbourGraph graph;
+    graph.offsets.assign(1, 0);
+    for (std::vector<int>& list : neighbours) {
+        std::sort(list.begin(), list.end());
+        list.erase(std::unique(list.begin(), list.end()), list.end());
+        graph.neighbours.insert(graph.neighbours.end(), list.begin(), list.end());
+        graph.offsets.push_back(static_cast<Label>(graph.neighbours.size()));
+    }
+
+    std::vector<NodeConstraint> constraints(nodeCount);
+    c.prescribed.assign(nodeCount, Vector3{});
+    for (int node = 0; node < nodeCount; ++node) {
+        const Vector3& p = c.points[node];
+        const double height = dimension == 3 ? p.z : p.y;
+        if (height == 0.0 || height == 1.0) {
+            constraints[node].kind = NodeKind::prescribed;
+            if (height == 1.0) {  // the top: turned 8° about the vertical through (0.5, 0.5) and shifted
+                const double angle = 8.0 * 3.14159265358979 / 180.0;
+                const double dx = p.x - 0.5, dy = dimension == 3 ? p.y - 0.5 : 0.0;
+                c.prescribed[node] = dimension == 3
+                                         ? Vector3{std::cos(angle) * dx - std::sin(angle) * dy - dx + 0.05,
+                                                   std::sin(angle) * dx + std::cos(angle) * dy - dy, 0.03}
+                                         : Vector3{0.1 * (1.0 + dx), 0.04 * dx, 0.0};
+            }
+        } else if (p.x == 0.0) {
+            constraints[node] = {NodeKind::sliding, Vector3{-2.0, 0.0, 0.0}, mirror};
+            c.prescribed[node] = {0.01, 0.0, 0.0};  // the plane itself moves by 0.01 along its normal
+        } else if (p.x == 1.0) {
+            constraints[node] = {NodeKind::sliding, Vector3{1.0, 0.0, 0.0}, false};
+        }
+    }
+    c.problem = std::make_unique<RbmProblem>(dimension, c.points, std::move(graph), constraints,
+                                             EdgeWeighting::inverseDistanceSquared);
+    return c;
+}
+
+double largestDifference(const std::vector<Vector3>& a, const std::vector<Vector3>& b)
+{
+    double largest = 0.0;
+    for (std::size_t k = 0; k < a.size(); ++k) largest = std::max(largest, norm(a[k] - b[k]));
+    return largest;
+}
+
+TEST(ReducedLinearizedOperator, GradientMatchesFiniteDifferencesOfTheReducedEnergy)
+{
+    for (int dimension : {2, 3}) {
+        const GridCase c = gridCase(dimension, 4, true, 7);
+        const RbmProblem& problem = *c.problem;
+        const ReducedLinearizedOperator reduced(problem);
+        const RbmEnergy energy(problem, RotationModel::smallAngle, c.prescribed);
+        std::mt19937 random(3);
+        std::uniform_real_distribution<double> value(-0.05, 0.05);
+        std::vector<Vector3> displacement = c.prescribed;
+        for (int node : problem.unknownNodes())
+            displacement[node] = {value(random), value(random), dimension == 3 ? value(random) : 0.0};
+
+        // E_reduced(u) = E(u, best ω(u)), evaluated through the full linearized energy.
+        auto reducedEnergy = [&](const std::vector<Vector3>& u) {
+            std::vector<Vector3> rotation(problem.nodeCount());
+            reduced.bestRotations(u, rotation);
+            std::vector<double> unknowns(problem.unknownCount());
+            packUnknowns(problem, RbmState{u, rotation}, unknowns);
+            return energy.value(unknowns);
+        };
+        std::vector<double> gradient(reduced.size());
+        reduced.gradient(displacement, gradient);
+
+        // The best rotations zero the rotation part of the full gradient, and the
+        // displacement part equals the reduced gradient (envelope theorem).
+        std::vector<Vector3> rotation(problem.nodeCount());
+        reduced.bestRotations(displacement, rotation);
+        std::vector<double> unknowns(problem.unknownCount()), fullGradient(problem.unknownCount());
+        packUnknowns(problem, RbmState{displacement, rotation}, unknowns);
+        energy.gradient(unknowns, fullGradient);
+        const int bs = problem.blockSize();
+        double largestRotationPart = 0.0, largestMismatch = 0.0, largestGradient = 0.0;
+        for (int a = 0; a < problem.unknownNodeCount(); ++a) {
+            const int node = problem.unknownNodes()[a];
+            for (int q = dimension; q < bs; ++q) {
+                double component = fullGradient[a * bs + q];
+                // A mirror node's rotation is held to its normal (x): only that part must vanish.
+                if (problem.rotatesAboutNormalOnly(node) && q != 3) component = 0.0;
+                largestRotationPart = std::max(largestRotationPart, std::abs(component));
+            }
+            for (int q = 0; q < dimension; ++q) {
+                largestMismatch = std::max(largestMismatch, std::abs(fullGradient[a * bs + q] - gradient[a * dimension + q]));
+                largestGradient = std::max(largestGradient, std::abs(gradient[a * dimension + q]));
+            }
+            if (problem.rotatesAboutNormalOnly(node)) {
+                EXPECT_EQ(rotation[node].y, 0.0);
+                EXPECT_EQ(rotation[node].z, 0.0);
+            }
+        }
+        EXPECT_GT(largestGradient, 1e-2) << dimension;
+        EXPECT_LT(largestRotationPart, 1e-12 * largestGradient) << dimension;
+        EXPECT_LT(largestMismatch, 1e-12 * largestGradient) << dimension;
+
+        // Central differences are exact for a quadratic up to rounding.
+        const double h = 1e-4;
+        double largestError = 0.0;
+        for (int a = 0; a < problem.unknownNodeCount(); a += 3) {
+            for (int q = 0; q < dimension; ++q) {
+                std::vector<Vector3> plus = displacement, minus = displacement;
+                plus[problem.unknownNodes()[a]][q] += h;
+                minus[problem.unknownNodes()[a]][q] -= h;
+                const double difference = (reducedEnergy(plus) - reducedEnergy(minus)) / (2.0 * h);
+                largestError = std::max(largestError, std::abs(difference - gradient[a * dimension + q]));
+            }
+        }
+        EXPECT_LT(largestError, 1e-7 * largestGradient) << dimension;
+    }
+}
+
+TEST(MatrixFreeLinearized, EqualsTheAssembledDirectSolution)
+{
+    for (const auto& [dimension, mirror] : {std::pair{2, false}, {3, false}, {3, true}}) {
+        const GridCase c = gridCase(dimension, dimension == 2 ? 12 : 6, mirror, 11);
+        ASSERT_TRUE(c.problem->hasSlidingNodes());
+        CoupledLinearizedSolver direct(*c.problem, {LinearSolverKind::direct, 1e-10});
+        CoupledLinearizedSolver matrixFree(*c.problem, {LinearSolverKind::matrixFree, 1e-12});
+        const RbmResult expected = direct.solve(c.prescribed);
+        const RbmResult result = matrixFree.solve(c.prescribed);
+        ASSERT_TRUE(expected.converged);
+        ASSERT_TRUE(result.converged) << result.reason;
+        EXPECT_GT(result.linearIterations, 2);
+        EXPECT_LT(result.linearIterations, 60) << dimension << "D";
+        // Within 1e-8 of the cell size (1/n) in displacement; rotations alike.
+        EXPECT_GT(largestDifference(expected.displacement, std::vector<Vector3>(expected.displacement.size())), 1e-2);
+        EXPECT_LT(largestDifference(result.displacement, expected.displacement), 1e-9) << dimension << "D" << mirror;
+        EXPECT_LT(largestDifference(result.rotation, expected.rotation), 1e-8) << dimension << "D" << mirror;
+        EXPECT_NEAR(result.energy, expected.energy, 1e-9 * expected.energy);
+        // Sliding nodes stay on their planes exactly.
+        for (int node = 0; node < c.problem->nodeCount(); ++node)
+            if (c.problem->kind(node) == NodeKind::sliding && c.points[node].x == 0.0)
+                EXPECT_NEAR(result.displacement[node].x, 0.01, 1e-15);
+        // A warm start from the answer needs (almost) no iterations.
+        const RbmResult again = matrixFree.solve(c.prescribed, &result);
+        EXPECT_LE(again.linearIterations, 2);
+        EXPECT_LT(largestDifference(again.displacement, expected.displacement), 1e-9);
+    }
+}
+
+TEST(MatrixFreeLinearized, ReproducesATranslationExactly)
+{
+    for (int dimension : {2, 3}) {
+        GridCase c = gridCase(dimension, 5, false, 5);
+        const Vector3 shift{0.02, -0.03, dimension == 3 ? 0.04 : 0.0};
+        // Sliding planes get the normal part of the shift; everything prescribed moves by it.
+        std::vector<Vector3> prescribed(c.points.size(), shift);
+        CoupledLinearizedSolver matrixFree(*c.problem, {LinearSolverKind::matrixFree, 1e-13});
+        const RbmResult result = matrixFree.solve(prescribed);
+        ASSERT_TRUE(result.converged) << result.reason;
+        double largest = 0.0;
+        for (const Vector3& u : result.displacement) largest = std::max(largest, norm(u - shift));
+        EXPECT_LT(largest, 1e-12) << dimension;
+        double rotation = 0.0;
+        for (const Vector3& omega : result.rotation) rotation = std::max(rotation, norm(omega));
+        EXPECT_LT(rotation, 1e-11) << dimension;
+    }
+}
+
+TEST(MatrixFreeLinearized, IsTheAutomaticChoiceForLarge3DProblemsOnly)
+{
+    EXPECT_TRUE(matrixFreeChosen(LinearSolverKind::automatic, 3, directSolverRowLimit + 6));
+    EXPECT_FALSE(matrixFreeChosen(LinearSolverKind::automatic, 3, directSolverRowLimit));
+    EXPECT_FALSE(matrixFreeChosen(LinearSolverKind::automatic, 2, 100 * directSolverRowLimit));
+    EXPECT_FALSE(matrixFreeChosen(LinearSolverKind::iterative, 3, 100 * directSolverRowLimit));
+    EXPECT_TRUE(matrixFreeChosen(LinearSolverKind::matrixFree, 2, 30));
+}
+
+} // namespace
+} // namespace rbm::motion
