@@ -519,13 +519,24 @@ void buildConstraints(const PolyMesh& mesh, const std::string& caseName, CasePro
 const std::vector<std::string>& allVariants()
 {
     static const std::vector<std::string> variants{"decoupled", "linearized", "newton", "localGlobal",
-                                                   "decoupledLinearized"};
+                                                   "decoupledLinearized", "linearizedAssembled"};
     return variants;
 }
 
 bool isCoupledVariant(const std::string& variant)
 {
-    return variant == "linearized" || variant == "newton" || variant == "localGlobal";
+    return variant == "linearized" || variant == "newton" || variant == "localGlobal" ||
+           variant == "linearizedAssembled";
+}
+
+// "linearizedAssembled": the coupled linearized system assembled as before the matrix-free
+// solve existed (direct in 2D and small 3D, CG + GAMG on the 6×6-block Hessian otherwise), for
+// comparison with the automatic choice.
+motion::LinearSolverKind assembledLinearSolver(const motion::RbmProblem& problem)
+{
+    return problem.dimension() == 2 || problem.unknownCount() <= motion::directSolverRowLimit
+               ? motion::LinearSolverKind::direct
+               : motion::LinearSolverKind::iterative;
 }
 
 // Solver options as RigidBodyMotionSolver sets them from its defaults.
@@ -541,6 +552,9 @@ std::unique_ptr<motion::RbmSolver> makeSolver(const std::string& variant, const 
         return std::make_unique<motion::DecoupledSolver>(problem, options);
     }
     if (variant == "linearized") return std::make_unique<motion::CoupledLinearizedSolver>(problem);
+    if (variant == "linearizedAssembled")
+        return std::make_unique<motion::CoupledLinearizedSolver>(
+            problem, motion::CoupledLinearizedOptions{assembledLinearSolver(problem)});
     if (variant == "newton") return std::make_unique<motion::CoupledNewtonSolver>(problem);
     if (variant == "localGlobal") {
         motion::LocalGlobalOptions options;
@@ -559,9 +573,12 @@ double estimatedMatrixBytes(const std::string& variant, const motion::RbmProblem
     const motion::SolveVariant solveVariant = variant == "decoupled"             ? motion::SolveVariant::decoupledNonlinear
                                               : variant == "decoupledLinearized" ? motion::SolveVariant::decoupledLinearized
                                               : variant == "linearized"          ? motion::SolveVariant::coupledLinearized
+                                              : variant == "linearizedAssembled" ? motion::SolveVariant::coupledLinearized
                                               : variant == "localGlobal"         ? motion::SolveVariant::coupledLocalGlobal
                                                                                  : motion::SolveVariant::coupledNewton;
-    return motion::estimateSolveMemory(solveVariant, motion::solveSizeOf(problem)).bytes;
+    const motion::LinearSolverKind kind =
+        variant == "linearizedAssembled" ? assembledLinearSolver(problem) : motion::LinearSolverKind::automatic;
+    return motion::estimateSolveMemory(solveVariant, motion::solveSizeOf(problem), kind).bytes;
 }
 
 // ---------------------------------------------------------------------------------------
@@ -748,7 +765,7 @@ Record runVariantTask(const std::string& caseName, const std::string& variant, c
 
     // The same step again with the matrices kept (a further time step of a linear variant). A
     // nonlinear variant repeats all its iterations; after a long first solve that is left out.
-    const bool linear = variant == "linearized" || variant == "decoupledLinearized";
+    const bool linear = variant == "linearized" || variant == "decoupledLinearized" || variant == "linearizedAssembled";
     if (linear || record.number("firstSolveSeconds") < 30.0) {
         PhaseTimer repeatTimer(record, "repeatSolve");
         const motion::RbmResult again = solver->solve(caseProblem.prescribed);
@@ -798,6 +815,7 @@ std::string solverCoefficients(const std::string& variant)
     if (variant == "localGlobal") return "coupling coupled; formulation nonlinear; algorithm localGlobal;";
     if (variant == "decoupled") return "coupling decoupled; formulation nonlinear; maxIterations 200;";
     if (variant == "decoupledLinearized") return "coupling decoupled; formulation linearized; subSteps 1;";
+    if (variant == "linearizedAssembled") return "coupling coupled; formulation linearized; subSteps 1; linearSolver direct;";
     throw std::invalid_argument("no solver coefficients for variant " + variant);
 }
 
@@ -987,7 +1005,9 @@ const char* usage =
     "                    [--memory-limit-gb G] [--diffusivity inverseDistance|uniform] [--airfoil DIR]\n"
     "                    [--work-dir DIR] [--keep]\n"
     "  --quick: sizes 1e4 (unless --sizes), 10 pitching steps (linearized only), no OpenFOAM, no rbmMoveMesh runs.\n"
-    "  Variants: decoupled, linearized, newton, localGlobal, decoupledLinearized.\n"
+    "  Variants: decoupled, linearized, newton, localGlobal, decoupledLinearized, linearizedAssembled\n"
+    "  (the linearized system assembled: direct in 2D and small 3D, else CG + GAMG; 'linearized' is\n"
+    "  matrix-free in 3D above the direct solver's size).\n"
     "  Sizes: RBM nodes (2D: nodes per plane) for the box-with-hole cases, cells for twist3D;\n"
     "  the airfoil mesh has one size.\n";
 

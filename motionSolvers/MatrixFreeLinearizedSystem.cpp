@@ -63,7 +63,7 @@ void copyFromVec(Vec vector, std::span<double> values)
 bool matrixFreeChosen(LinearSolverKind kind, int dimension, int unknownCount)
 {
     if (kind == LinearSolverKind::matrixFree) return true;
-    if (kind != LinearSolverKind::automatic || dimension != 3 || unknownCount <= directSolverRowLimit) return false;
+    if (kind != LinearSolverKind::automatic || dimension != 3 || unknownCount <= 0) return false;
     PetscMPIInt ranks = 1;
     RBM_CHECK_PETSC(MPI_Comm_size(solverCommunicator(), &ranks));
     return ranks == 1;

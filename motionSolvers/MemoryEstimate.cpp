@@ -130,8 +130,7 @@ MemoryEstimate estimateSolveMemory(SolveVariant variant, const SolveSize& size, 
     const double factor = variantFactor(variant) * std::max(systems, 1);
     const bool matrixFree = variant == SolveVariant::coupledLinearized &&
                             (linearSolver == LinearSolverKind::matrixFree ||
-                             (linearSolver == LinearSolverKind::automatic && size.dimension == 3 &&
-                              estimate.rows > directSolverRowLimit));
+                             (linearSolver == LinearSolverKind::automatic && size.dimension == 3));
     if (matrixFree) {
         estimate.direct = false;
         estimate.matrixFree = true;

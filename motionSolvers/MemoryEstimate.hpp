@@ -12,7 +12,7 @@
 //    unknown nodes, b = 6, fitted to peaks measured on hex boxes (MemoryEstimate.cpp);
 //  - Krylov + multigrid (3D above the row limit, or `linearSolver iterative`): the assembled
 //    block array, PETSc's AIJ copy and the multigrid hierarchy, about 38 bytes per stored value;
-//  - matrix-free linearized (3D above the row limit on one rank, or `linearSolver matrixFree`):
+//  - matrix-free linearized (3D, or `linearSolver matrixFree`):
 //    the scalar displacement Laplacian and its multigrid, ~40 bytes per block, plus ~400 bytes
 //    per node (MemoryEstimate.cpp).
 // and per variant: Newton keeps an LU of its Hessian besides the linearized Cholesky factor

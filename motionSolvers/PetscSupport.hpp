@@ -133,7 +133,8 @@ enum class MatrixSymmetry {
 };
 
 enum class LinearSolverKind {
-    automatic,  // direct factorisation for 2D and small problems, Krylov + multigrid otherwise
+    automatic,  // direct factorisation for 2D and small problems, Krylov + multigrid otherwise;
+                // the coupled linearized system in 3D on one rank: matrixFree
     direct,     // LU, or Cholesky for symmetric positive definite matrices (MUMPS if present)
     iterative,  // CG + GAMG (symmetric positive definite), GMRES + GAMG (symmetric), GMRES + ILU
     matrixFree, // the coupled linearized system unassembled (MatrixFreeLinearizedSystem.hpp); systems

@@ -233,11 +233,12 @@ TEST(MatrixFreeLinearized, ReproducesATranslationExactly)
     }
 }
 
-TEST(MatrixFreeLinearized, IsTheAutomaticChoiceForLarge3DProblemsOnly)
+TEST(MatrixFreeLinearized, IsTheAutomaticChoiceIn3DOnly)
 {
-    EXPECT_TRUE(matrixFreeChosen(LinearSolverKind::automatic, 3, directSolverRowLimit + 6));
-    EXPECT_FALSE(matrixFreeChosen(LinearSolverKind::automatic, 3, directSolverRowLimit));
+    EXPECT_TRUE(matrixFreeChosen(LinearSolverKind::automatic, 3, 100 * directSolverRowLimit));
+    EXPECT_TRUE(matrixFreeChosen(LinearSolverKind::automatic, 3, 60));
     EXPECT_FALSE(matrixFreeChosen(LinearSolverKind::automatic, 2, 100 * directSolverRowLimit));
+    EXPECT_FALSE(matrixFreeChosen(LinearSolverKind::direct, 3, 600));
     EXPECT_FALSE(matrixFreeChosen(LinearSolverKind::iterative, 3, 100 * directSolverRowLimit));
     EXPECT_TRUE(matrixFreeChosen(LinearSolverKind::matrixFree, 2, 30));
 }
