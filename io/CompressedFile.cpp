@@ -113,7 +113,12 @@ fs::path writeFileContents(const fs::path& path, std::string_view contents, bool
         return path;
     }
     const fs::path target = withGzSuffix(path);
-    gzFile file = gzopen(target.c_str(), "wb6");
+    // Level 1 (zlib's fastest), not OpenFOAM's default 6: any level reads back the same.
+    // On the 40k-node airfoil (81 280 points) level 6 took 0.19 s for the ascii
+    // pointDisplacement and 0.075 s for the binary points of every written time, half of an
+    // rbmMoveMesh step; level 1 takes 0.026 s and 0.040 s, for files 10 % (ascii) and 0.7 %
+    // (binary: doubles hardly compress) larger.
+    gzFile file = gzopen(target.c_str(), "wb1");
     if (!file) throw std::runtime_error("cannot open file for writing " + target.string());
     std::size_t written = 0;
     while (written < contents.size()) {

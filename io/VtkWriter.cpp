@@ -98,6 +98,8 @@ void writeVtu(const fs::path& file, const std::vector<Vector3>& points, const Vt
     writer->SetInputData(grid);
     writer->SetDataModeToAppended();
     writer->SetCompressorTypeToZLib();
+    // zlib's fastest level, as for the .gz files (CompressedFile.cpp); VTK's default is 5.
+    writer->SetCompressionLevel(1);
     if (writer->Write() != 1) {
         fs::remove(temporary);
         throw std::runtime_error("VTK could not write " + file.string());

@@ -2,6 +2,8 @@
 
 #include "BlockRowLayout.hpp"
 
+#include <dlfcn.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cstdlib>
@@ -57,12 +59,30 @@ void preferFastSingletonStart()
     setenv("OMPI_MCA_orte_create_session_dirs", "0", 0);
 }
 
+// OpenBLAS (Debian's libopenblas0, pthread build) starts one thread per core. The direct
+// factorisations' fronts are small (at most ~1000 rows on the 40k-node airfoil), so a second
+// BLAS thread gained nothing on a quiet 2-core machine (first airfoil solve 0.70 s either
+// way), while on a shared one its spinning cost CPU and wall: airfoil first solve 0.82-1.01 s
+// wall / 0.59-0.62 s CPU with one thread, 1.12-2.08 s / 0.75-1.37 s with two (load 4-5).
+// So one thread, unless the environment asks otherwise (OPENBLAS_NUM_THREADS,
+// GOTO_NUM_THREADS or OMP_NUM_THREADS, which OpenBLAS reads itself). Looked up at run time:
+// with another BLAS there is nothing to set.
+void preferSingleThreadedBlas()
+{
+    for (const char* name : {"OPENBLAS_NUM_THREADS", "GOTO_NUM_THREADS", "OMP_NUM_THREADS"})
+        if (std::getenv(name)) return;
+    using SetThreads = void (*)(int);
+    if (void* symbol = dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))
+        reinterpret_cast<SetThreads>(symbol)(1);
+}
+
 } // namespace
 
 PetscSession::PetscSession(int* argc, char*** argv)
 {
     if (!isInitialized()) {
         preferFastSingletonStart();
+        preferSingleThreadedBlas();
         RBM_CHECK_PETSC(PetscInitialize(argc, argv, nullptr, nullptr));
         ownsInitialization_ = true;
     }
@@ -137,22 +157,29 @@ InheritedOptions::InheritedOptions(std::string_view solverName) : prefix_("rbm_"
         if (found == inherited.end()) inherited.emplace(std::string(stem), std::pair{priority, value});
         else if (priority >= found->second.first) found->second = {priority, value};
     }
-    for (const auto& [stem, source] : inherited) {
-        const std::string name = "-" + prefix_ + stem;
-        int& holders = copiedOptionHolders()[name];
-        if (holders == 0) {
-            PetscBool set = PETSC_FALSE;
-            RBM_CHECK_PETSC(PetscOptionsHasName(nullptr, nullptr, name.c_str(), &set));
-            if (set == PETSC_TRUE) {  // given by the user: not ours
-                copiedOptionHolders().erase(name);
-                continue;
-            }
-            RBM_CHECK_PETSC(PetscOptionsSetValue(nullptr, name.c_str(),
-                                                 source.second.empty() ? nullptr : source.second.c_str()));
+    for (const auto& [stem, source] : inherited) hold("-" + prefix_ + stem, source.second);
+}
+
+void InheritedOptions::addDefault(std::string_view stem, std::string_view value) const
+{
+    const std::string name = "-" + prefix_ + std::string(stem);
+    if (std::find(copies_.begin(), copies_.end(), name) == copies_.end()) hold(name, std::string(value));
+}
+
+void InheritedOptions::hold(const std::string& name, const std::string& value) const
+{
+    int& holders = copiedOptionHolders()[name];
+    if (holders == 0) {
+        PetscBool set = PETSC_FALSE;
+        RBM_CHECK_PETSC(PetscOptionsHasName(nullptr, nullptr, name.c_str(), &set));
+        if (set == PETSC_TRUE) {  // given by the user: not ours
+            copiedOptionHolders().erase(name);
+            return;
         }
-        ++holders;
-        copies_.push_back(name);
+        RBM_CHECK_PETSC(PetscOptionsSetValue(nullptr, name.c_str(), value.empty() ? nullptr : value.c_str()));
     }
+    ++holders;
+    copies_.push_back(name);
 }
 
 InheritedOptions::~InheritedOptions()
@@ -167,14 +194,59 @@ InheritedOptions::~InheritedOptions()
     }
 }
 
+namespace {
+
+// MUMPS orders 2D systems up to this many rows with AMF (approximate minimum fill,
+// ICNTL(7) = 2) instead of its automatic choice, which in Debian's MUMPS 5.5 (built with
+// PORD only, no METIS or SCOTCH) is PORD's nested dissection. Both order the node graph
+// (ICNTL(15): blocks of 3 unknowns). AMF's analysis is 4-6 times faster, its factors need
+// about as many flops in 2D up to 10⁵ nodes; beyond, and in 3D, nested dissection wins.
+// Measured (one core, MUMPS's own timers; CPU of the first solve = analysis +
+// factorisation + solve):
+//   40k-node boundary-layer airfoil, 119 466 rows: PORD analysis 0.23-0.37 s + 3.8 GFlop
+//     (0.33-0.41 s), AMF 0.05-0.08 s + 4.6 GFlop (0.45-0.52 s): 0.70 -> 0.56 s CPU;
+//   quad2D / tri2D, 10⁵ nodes (305 040 rows): analysis 0.65 -> 0.17 s / 0.68 -> 0.11 s,
+//     flops +15 % / -4 %: 1.91 -> 1.64 s / 1.80 -> 1.43 s CPU; 10⁴ nodes 0.12 -> 0.09 s;
+//   hex3D / tet3D, 3·10³ nodes (18 000 rows): AMF needs 1.7× / 1.3× PORD's flops (lost).
+// AMD, QAMD and PETSc's CHOLMOD were slower; solutions agree to rounding (1e-12).
+// docs/motionSolver.md, "Direct solver".
+[[maybe_unused]] constexpr int amfOrderingRowLimit = 320000;
+
+// setDefaultLinearSolver marks a KSP whose MUMPS factorisation should use AMF with this
+// composed object; configureFromOptions, which knows the options prefix, then adds
+// -<prefix>mat_mumps_icntl_7 2 as an InheritedOptions default (MUMPS reads it at the
+// analysis; any -mat_mumps_icntl_7 given wins).
+constexpr const char* amfMarkerName = "rbm_prefer_mumps_amf";
+
+[[maybe_unused]] void markForAmfOrdering(KSP ksp)
+{
+    PetscHandle<PetscContainer, PetscContainerDestroy> marker;
+    RBM_CHECK_PETSC(PetscContainerCreate(PetscObjectComm(reinterpret_cast<PetscObject>(ksp)), marker.out()));
+    RBM_CHECK_PETSC(PetscObjectCompose(reinterpret_cast<PetscObject>(ksp), amfMarkerName,
+                                       reinterpret_cast<PetscObject>(marker.get())));
+}
+
+bool isMarkedForAmfOrdering(KSP ksp)
+{
+    PetscObject marker = nullptr;
+    RBM_CHECK_PETSC(PetscObjectQuery(reinterpret_cast<PetscObject>(ksp), amfMarkerName, &marker));
+    return marker != nullptr;
+}
+
+} // namespace
+
 void configureFromOptions(KSP ksp, const InheritedOptions& options)
 {
+    if (isMarkedForAmfOrdering(ksp)) options.addDefault("mat_mumps_icntl_7", "2");
     RBM_CHECK_PETSC(KSPSetOptionsPrefix(ksp, options.prefix().c_str()));
     RBM_CHECK_PETSC(KSPSetFromOptions(ksp));
 }
 
 void configureFromOptions(SNES snes, const InheritedOptions& options)
 {
+    KSP ksp = nullptr;
+    RBM_CHECK_PETSC(SNESGetKSP(snes, &ksp));
+    if (isMarkedForAmfOrdering(ksp)) options.addDefault("mat_mumps_icntl_7", "2");
     RBM_CHECK_PETSC(SNESSetOptionsPrefix(snes, options.prefix().c_str()));
     RBM_CHECK_PETSC(SNESSetFromOptions(snes));
 }
@@ -198,6 +270,9 @@ bool setDefaultLinearSolver(KSP ksp, LinearSolverKind kind, int dimension, int r
     RBM_CHECK_PETSC(KSPSetTolerances(ksp, relativeTolerance, PETSC_DEFAULT, PETSC_DEFAULT, 10000));
     if (direct) {
         useDirectSolver(ksp, symmetry == MatrixSymmetry::symmetricPositiveDefinite ? PCCHOLESKY : PCLU);
+#if defined(PETSC_HAVE_MUMPS)
+        if (dimension == 2 && rowCount <= amfOrderingRowLimit) markForAmfOrdering(ksp);
+#endif
         return true;
     }
     PC pc = nullptr;

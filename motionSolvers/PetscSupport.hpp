@@ -83,7 +83,9 @@ using PetscSnes = PetscHandle<SNES, SNESDestroy>;
 
 // Initialises PETSc (and MPI) unless it already is, finalises it only if this object
 // initialised it. Installs PETSc's "return" error handler so errors become exceptions
-// through checkPetsc instead of tracebacks on stderr.
+// through checkPetsc instead of tracebacks on stderr. Before initialising it sets Open MPI's
+// fast singleton start and one OpenBLAS thread, unless the environment says otherwise
+// (both measured in PetscSupport.cpp).
 class PetscSession {
 public:
     PetscSession();                       // no command-line options (PETSC_OPTIONS still read)
@@ -112,13 +114,21 @@ public:
 
     const std::string& prefix() const { return prefix_; }  // "rbm_<solverName>_"
 
+    // Sets -rbm_<solverName>_<stem> to value for this holder's lifetime unless that option
+    // is given (in any of the forms above) or held already. Used by configureFromOptions for
+    // rbm's own defaults; const as the copies are: they belong to the options database.
+    void addDefault(std::string_view stem, std::string_view value) const;
+
 private:
+    void hold(const std::string& name, const std::string& value) const;
+
     std::string prefix_;
-    std::vector<std::string> copies_;
+    mutable std::vector<std::string> copies_;
 };
 
 // Applies the options under options.prefix() to a solver object whose defaults are set
-// (call last: command-line options override the defaults).
+// (call last: command-line options override the defaults). Adds the option defaults that
+// setDefaultLinearSolver asked for (MUMPS's AMF ordering) to `options`.
 void configureFromOptions(KSP ksp, const InheritedOptions& options);
 void configureFromOptions(SNES snes, const InheritedOptions& options);
 
@@ -147,7 +157,10 @@ enum class LinearSolverKind {
 inline constexpr int directSolverRowLimit = 20000;
 
 // Sets the default Krylov method and preconditioner of ksp (before configureFromOptions).
-// Returns true when the default is a direct factorisation.
+// Returns true when the default is a direct factorisation. For 2D systems up to 320 000
+// rows that MUMPS factorises, MUMPS orders with AMF (-mat_mumps_icntl_7 2, added by
+// configureFromOptions) unless an option says otherwise: measured faster there, see
+// PetscSupport.cpp.
 bool setDefaultLinearSolver(KSP ksp, LinearSolverKind kind, int dimension, int rowCount, MatrixSymmetry symmetry,
                             double relativeTolerance);
 

@@ -1,0 +1,123 @@
+// rbm's defaults for the direct solver (motionSolvers/PetscSupport.cpp): MUMPS orders 2D
+// systems with AMF (ICNTL(7) = 2) and 3D ones with its own automatic choice; an option given
+// by the user wins; the option copy lives only as long as the solver.
+
+#include "BlockRowLayout.hpp"
+#include "PetscSupport.hpp"
+#include "PetscTestEnvironment.hpp"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <string>
+#include <vector>
+
+static auto* const petscEnvironment = ::testing::AddGlobalTestEnvironment(new rbm::test::PetscTestEnvironment);
+
+namespace {
+
+using rbm::motion::BlockSystemSolver;
+using rbm::motion::LinearSolverKind;
+using rbm::motion::MatrixSymmetry;
+
+constexpr int blockSize = 3;
+constexpr int nodes = 4;
+
+// The path graph 0-1-2-3, blocks 4 I on the diagonal and -I off it (symmetric positive definite).
+struct PathSystem {
+    std::vector<int> rowOffsets{0, 2, 5, 8, 10};
+    std::vector<int> columns{0, 1, 0, 1, 2, 1, 2, 3, 2, 3};
+    std::vector<double> blocks;
+
+    PathSystem()
+    {
+        for (int row = 0; row < nodes; ++row) {
+            for (int position = rowOffsets[row]; position < rowOffsets[row + 1]; ++position) {
+                const double diagonal = columns[position] == row ? 4.0 : -1.0;
+                for (int i = 0; i < blockSize; ++i)
+                    for (int j = 0; j < blockSize; ++j) blocks.push_back(i == j ? diagonal : 0.0);
+            }
+        }
+    }
+};
+
+// x_i = (i + 1, -2 (i + 1), 0.5), b = A x by hand: b_i = 4 x_i - x_{i-1} - x_{i+1}.
+std::vector<double> expectedSolution()
+{
+    std::vector<double> x;
+    for (int i = 0; i < nodes; ++i) x.insert(x.end(), {i + 1.0, -2.0 * (i + 1), 0.5});
+    return x;
+}
+
+std::vector<double> rightHandSide(const std::vector<double>& x)
+{
+    std::vector<double> b(x.size());
+    for (int i = 0; i < nodes; ++i)
+        for (int c = 0; c < blockSize; ++c) {
+            double value = 4.0 * x[blockSize * i + c];
+            if (i > 0) value -= x[blockSize * (i - 1) + c];
+            if (i + 1 < nodes) value -= x[blockSize * (i + 1) + c];
+            b[blockSize * i + c] = value;
+        }
+    return b;
+}
+
+bool optionSet(const char* name)
+{
+    PetscBool set = PETSC_FALSE;
+    RBM_CHECK_PETSC(PetscOptionsHasName(nullptr, nullptr, name, &set));
+    return set == PETSC_TRUE;
+}
+
+// Solves the path system with a direct solver; returns MUMPS's ICNTL(7) after the solve.
+int solveAndReadOrdering(int dimension)
+{
+    PathSystem path;
+    BlockSystemSolver system(path.rowOffsets, path.columns, blockSize, MatrixSymmetry::symmetricPositiveDefinite,
+                             LinearSolverKind::direct, dimension, 1e-12, "linearized");
+    EXPECT_TRUE(system.isDirect());
+    system.setMatrix(path.blocks);
+    const std::vector<double> expected = expectedSolution();
+    std::vector<double> solution(expected.size(), 0.0);
+    const BlockSystemSolver::Report report = system.solve(rightHandSide(expected), solution);
+    EXPECT_TRUE(report.converged);
+    for (std::size_t k = 0; k < expected.size(); ++k) EXPECT_NEAR(solution[k], expected[k], 1e-13) << k;
+
+    PC pc = nullptr;
+    RBM_CHECK_PETSC(KSPGetPC(system.ksp(), &pc));
+    Mat factor = nullptr;
+    RBM_CHECK_PETSC(PCFactorGetMatrix(pc, &factor));
+    PetscInt ordering = -1;
+    RBM_CHECK_PETSC(MatMumpsGetIcntl(factor, 7, &ordering));
+    return static_cast<int>(ordering);
+}
+
+#if defined(PETSC_HAVE_MUMPS)
+
+TEST(DirectSolverDefaults, TwoDimensionalSystemsUseAmfWhileTheSolverLives)
+{
+    EXPECT_EQ(solveAndReadOrdering(2), 2);
+    // The copied option went with the solver: a 3D solver of the same name does not see it.
+    EXPECT_FALSE(optionSet("-rbm_linearized_mat_mumps_icntl_7"));
+}
+
+TEST(DirectSolverDefaults, ThreeDimensionalSystemsKeepMumpsAutomaticChoice)
+{
+    EXPECT_EQ(solveAndReadOrdering(3), 7);
+}
+
+TEST(DirectSolverDefaults, AGivenOrderingWins)
+{
+    RBM_CHECK_PETSC(PetscOptionsSetValue(nullptr, "-mat_mumps_icntl_7", "0"));
+    EXPECT_EQ(solveAndReadOrdering(2), 0);
+    RBM_CHECK_PETSC(PetscOptionsClearValue(nullptr, "-mat_mumps_icntl_7"));
+
+    RBM_CHECK_PETSC(PetscOptionsSetValue(nullptr, "-rbm_linearized_mat_mumps_icntl_7", "6"));
+    EXPECT_EQ(solveAndReadOrdering(2), 6);
+    EXPECT_TRUE(optionSet("-rbm_linearized_mat_mumps_icntl_7"));  // the user's, left alone
+    RBM_CHECK_PETSC(PetscOptionsClearValue(nullptr, "-rbm_linearized_mat_mumps_icntl_7"));
+}
+
+#endif
+
+} // namespace
