@@ -57,6 +57,13 @@ std::vector<double> CoupledLinearizedSolver::solveUnknowns(std::span<const Vecto
     }
     report = system_->solve(rightHandSide, step, useGuess);
     problem_.projectSliding(step);  // exact constraint despite the solver's rounding
+    // P∇E_lin(start + δ) = P∇E(start) + P H δ = M δ − rhs (M = P H P + s(I − P), Pδ = δ): one
+    // block product instead of a second gradient evaluation (a pitching step's 8 ms of 140).
+    std::vector<double> residual(step.size());
+    system_->multiply(step, residual);
+    double sum = 0.0;
+    for (std::size_t k = 0; k < residual.size(); ++k) sum += (residual[k] - rightHandSide[k]) * (residual[k] - rightHandSide[k]);
+    report.residualNorm = std::sqrt(sum);
     for (std::size_t k = 0; k < step.size(); ++k) start[k] += step[k];
     return start;
 }
@@ -74,13 +81,16 @@ RbmResult CoupledLinearizedSolver::solve(std::span<const Vector3> prescribedDisp
     result.converged = report.converged;
     result.reason = report.reason;
 
-    const RbmEnergy linearized(problem_, RotationModel::smallAngle, prescribedDisplacement);
-    std::vector<double> gradient(unknowns.size());
-    linearized.gradient(unknowns, gradient);
-    problem_.projectSliding(gradient);
-    double sum = 0.0;
-    for (double g : gradient) sum += g * g;
-    result.residualNorm = std::sqrt(sum);
+    result.residualNorm = report.residualNorm;
+    if (result.residualNorm < 0.0) {
+        const RbmEnergy linearized(problem_, RotationModel::smallAngle, prescribedDisplacement);
+        std::vector<double> gradient(unknowns.size());
+        linearized.gradient(unknowns, gradient);
+        problem_.projectSliding(gradient);
+        double sum = 0.0;
+        for (double g : gradient) sum += g * g;
+        result.residualNorm = std::sqrt(sum);
+    }
     result.energy = RbmEnergy(problem_, RotationModel::exact, prescribedDisplacement).value(unknowns);
     return result;
 }

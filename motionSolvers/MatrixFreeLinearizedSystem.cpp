@@ -3,6 +3,7 @@
 #include "BlockRowLayout.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 namespace rbm::motion {
@@ -222,6 +223,14 @@ std::vector<double> MatrixFreeLinearizedSystem::solveUnknowns(std::span<const Ve
     for (int a = 0; a < nodes; ++a)
         for (int q = 0; q < dimension; ++q)
             displacement[unknownNodes[a]][q] += step[static_cast<std::size_t>(a) * dimension + q];
+
+    // The residual P∇E_lin at the result: its rotation part vanishes (best rotations), its
+    // displacement part is the reduced gradient.
+    operator_.gradient(displacement, gradient);
+    problem_.projectSliding(gradient, dimension);
+    double sum = 0.0;
+    for (double value : gradient) sum += value * value;
+    report.residualNorm = std::sqrt(sum);
 
     std::vector<Vector3> rotation(problem_.nodeCount());
     operator_.bestRotations(displacement, rotation);

@@ -197,6 +197,7 @@ public:
         int iterations = 0;
         bool converged = false;
         std::string reason;
+        double residualNorm = -1.0;  // a caller's ‖residual‖ at the solution when it has it; −1: not computed
     };
 
     // rowOffsets/columns: block CSR (sorted columns, diagonal included), copied.
