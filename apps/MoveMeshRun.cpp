@@ -15,6 +15,7 @@
 #include "RigidBodyMotionOptions.hpp"
 #include "RigidBodyMotionSolver.hpp"
 #include "ThesisQuality.hpp"
+#include "ThreadCount.hpp"
 #include "TimeFolderWriter.hpp"
 
 #include <petscversion.h>
@@ -546,7 +547,8 @@ void MoveMeshRun::printHeader() const
         out_ << ": " << rbmSolver->options().describe();
     }
     out_ << " (constant/dynamicMeshDict)\n"
-         << "Boundary      : " << relative(boundaryFieldFile_) << "\n";
+         << "Boundary      : " << relative(boundaryFieldFile_) << "\n"
+         << "Threads       : " << describeThreadCount() << "\n";
     if (warmStartFile_) out_ << "Warm start    : " << relative(*warmStartFile_) << "\n";
     out_ << "Time          : from " << startTimeName_ << " (startFrom " << startFrom << ") to "
          << control_.timeName(control_.endTime) << ", deltaT " << general(control_.deltaT) << ": " << stepCount_
@@ -1063,6 +1065,7 @@ int moveMeshMain(int argc, char** argv, std::ostream& out, std::ostream& err)
             }
             return exitBadInput;
         }
+        applyThreadCountPolicy(size);   // OMP_NUM_THREADS, else the cores, else 1 per rank (ThreadCount.hpp)
         if (size == 1) return runMoveMesh(commandLine.options, out, err);
         return runOnAllRanks(commandLine.options, rank, out, err);
     } catch (const UsageError& error) {

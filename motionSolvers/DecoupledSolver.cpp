@@ -1,6 +1,7 @@
 #include "DecoupledSolver.hpp"
 
 #include "RbmEnergy.hpp"
+#include "ThreadCount.hpp"
 
 #include <algorithm>
 #include <array>
@@ -56,8 +57,11 @@ DecoupledSolver::DecoupledSolver(const RbmProblem& problem, DecoupledOptions opt
     const int bs = problem.blockSize();
     const std::size_t area = static_cast<std::size_t>(bs) * bs;
     linearBlocks_.assign(area * pattern.blockCount(), 0.0);
-    std::array<Vector3, 3> a;
-    for (int row = 0; row < problem.unknownNodeCount(); ++row) {
+    const int unknownNodeCount = problem.unknownNodeCount();
+    // Row block i gets only centre i's terms: threads write only their own rows.
+#pragma omp parallel for schedule(static) if (worthThreading(graph.neighbours.size()))
+    for (int row = 0; row < unknownNodeCount; ++row) {
+        std::array<Vector3, 3> a;
         const int i = problem.unknownNodes()[row];
         double* diagonal = linearBlocks_.data() + area * pattern.diagonal[row];
         for (int e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e) {
@@ -108,8 +112,10 @@ RbmResult DecoupledSolver::solveLinearized(std::span<const Vector3> prescribedDi
 
     // b: the prescribed neighbours' terms.
     std::vector<double> b(size, 0.0);
-    std::array<Vector3, 3> a;
-    for (int row = 0; row < problem_.unknownNodeCount(); ++row) {
+    const int unknownNodeCount = problem_.unknownNodeCount();
+#pragma omp parallel for schedule(static) if (worthThreading(graph.neighbours.size()))
+    for (int row = 0; row < unknownNodeCount; ++row) {
+        std::array<Vector3, 3> a;
         const int i = problem_.unknownNodes()[row];
         double* bi = b.data() + static_cast<std::size_t>(row) * bs;
         for (int e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e) {
@@ -129,6 +135,7 @@ RbmResult DecoupledSolver::solveLinearized(std::span<const Vector3> prescribedDi
     }
     auto multiply = [&](const std::vector<double>& z, std::vector<double>& out) {  // out = A z (unprojected)
         std::fill(out.begin(), out.end(), 0.0);
+#pragma omp parallel for schedule(static) if (worthThreading(static_cast<std::size_t>(pattern.blockCount())))
         for (int row = 0; row < pattern.rowCount(); ++row)
             for (int position = pattern.rowOffsets[row]; position < pattern.rowOffsets[row + 1]; ++position) {
                 const double* block = linearBlocks_.data() + area * position;

@@ -1,5 +1,7 @@
 #include "LocalGlobalSolver.hpp"
 
+#include "ThreadCount.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -144,7 +146,12 @@ void fitNodeRotations(const RbmProblem& problem, std::span<const Vector3> displa
     const std::vector<Vector3>& x = problem.referencePoints();
     const bool planar = problem.dimension() == 2;
     rotations.resize(problem.nodeCount(), Matrix3::identity());
-    for (int i : problem.unknownNodes()) {
+    const std::vector<int>& nodes = problem.unknownNodes();
+    const int unknownNodeCount = problem.unknownNodeCount();
+    // One independent fit per node (thesis' local step): threads write only their own nodes.
+#pragma omp parallel for schedule(static) if (worthThreading(graph.neighbours.size()))
+    for (int a = 0; a < unknownNodeCount; ++a) {
+        const int i = nodes[a];
         double crossSum = 0.0, dotSum = 0.0;
         Matrix3 covariance;  // Σ w e dᵀ
         for (int e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e) {
@@ -202,8 +209,10 @@ std::vector<Vector3> LaggedRotationIteration::rightHandSide(std::span<const Vect
     const CellNeighbourGraph& graph = problem_.graph();
     const std::vector<Vector3>& x = problem_.referencePoints();
     const bool planar = problem_.dimension() == 2;
-    std::vector<Vector3> b(problem_.unknownNodeCount());
-    for (int a = 0; a < problem_.unknownNodeCount(); ++a) {
+    const int unknownNodeCount = problem_.unknownNodeCount();
+    std::vector<Vector3> b(unknownNodeCount);
+#pragma omp parallel for schedule(static) if (worthThreading(problem_.graph().neighbours.size()))
+    for (int a = 0; a < unknownNodeCount; ++a) {
         const int i = problem_.unknownNodes()[a];
         Vector3 sum;
         for (int e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e) {
@@ -230,8 +239,10 @@ double LaggedRotationIteration::residualNorm(std::span<const Vector3> displaceme
 {
     const BlockPattern& pattern = problem_.blockPattern();
     const int dim = problem_.dimension();
-    double sum = 0.0;
-    for (int a = 0; a < problem_.unknownNodeCount(); ++a) {
+    const int unknownNodeCount = problem_.unknownNodeCount();
+    std::vector<double> rowSquares(static_cast<std::size_t>(unknownNodeCount));
+#pragma omp parallel for schedule(static) if (worthThreading(problem_.graph().neighbours.size()))
+    for (int a = 0; a < unknownNodeCount; ++a) {
         Vector3 r = -1.0 * rightHandSide[a];
         for (int position = pattern.rowOffsets[a]; position < pattern.rowOffsets[a + 1]; ++position)
             r += laplacian_[position] * displacement[problem_.unknownNodes()[pattern.columns[position]]];
@@ -241,8 +252,10 @@ double LaggedRotationIteration::residualNorm(std::span<const Vector3> displaceme
             r -= dot(r, n) * n;
         }
         if (dim == 2) r.z = 0.0;
-        sum += normSquared(r);
+        rowSquares[a] = normSquared(r);
     }
+    double sum = 0.0;  // in row order, whatever the thread count
+    for (double square : rowSquares) sum += square;
     return std::sqrt(sum);
 }
 
@@ -448,16 +461,24 @@ RbmResult LaggedRotationIteration::run(std::span<const Vector3> prescribedDispla
             }
         }
     };
+    // Per-edge terms computed by the threads, summed in edge order (the same sum for any
+    // thread count).
+    std::vector<double> edgeTerms(problem_.graph().neighbours.size());
     auto energyOf = [&](const std::vector<Vector3>& displacement, const std::vector<Matrix3>& fitted) {
         const CellNeighbourGraph& graph = problem_.graph();
-        double sum = 0.0;
-        for (int i : nodes)
+#pragma omp parallel for schedule(static) if (worthThreading(problem_.graph().neighbours.size()))
+        for (int a = 0; a < m; ++a) {
+            const int i = nodes[a];
             for (int e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e) {
                 const int j = graph.neighbours[e];
                 Vector3 d = problem_.referencePoints()[j] - problem_.referencePoints()[i];
                 if (dim == 2) d.z = 0.0;
-                sum += problem_.edgeWeights()[e] * normSquared(displacement[j] - displacement[i] + d - fitted[i] * d);
+                edgeTerms[e] = problem_.edgeWeights()[e] * normSquared(displacement[j] - displacement[i] + d - fitted[i] * d);
             }
+        }
+        double sum = 0.0;
+        for (int i : nodes)
+            for (int e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e) sum += edgeTerms[e];
         return 0.5 * sum;
     };
 

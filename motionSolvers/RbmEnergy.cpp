@@ -1,5 +1,7 @@
 #include "RbmEnergy.hpp"
 
+#include "ThreadCount.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -211,18 +213,22 @@ RbmEnergy::RbmEnergy(const RbmProblem& problem, RotationModel model, std::span<c
 
 namespace {
 
+// Position of the first edge i → j with j > i (the end of i's row if there is none).
+int firstEdgeAfter(const CellNeighbourGraph& graph, int i)
+{
+    const auto row = graph.neighboursOf(i);
+    return graph.offsets[i] + static_cast<int>(std::upper_bound(row.begin(), row.end(), i) - row.begin());
+}
+
 // One pass over all edges (i → j), i unknown, computing whatever is asked for:
 //   r = u_j − u_i + d − R_i d,  d = x_j − x_i,  a_k = ∂(R_i d)/∂φ_k,  C_kl = rᵀ ∂²(R_i d)/∂φ_k∂φ_l
 //   E += w/2 |r|²
 //   ∇: u_i −= w r,  φ_i,k −= w a_k·r,  u_j += w r            (thesis Eq1–Eq3, eqs 2.27–2.29)
 //   ∇²: JᵀJ with J = [∂r/∂u_i, ∂r/∂φ_i, ∂r/∂u_j] = [−I, −a, I], plus −w C on (φ_i, φ_i)
 //       (the analytic Jacobian of eqs 2.30–2.47 in node-local variables)
-double evaluate(const RbmProblem& problem, RotationModel model, const std::vector<Vector3>& prescribed,
-                std::span<const double> unknowns, double* gradient, double* hessian, bool includeCurvature = true)
+double evaluateSerially(const RbmProblem& problem, RotationModel model, const std::vector<Vector3>& prescribed,
+                        std::span<const double> unknowns, double* gradient, double* hessian, bool includeCurvature)
 {
-    if (static_cast<int>(unknowns.size()) != problem.unknownCount())
-        throw std::invalid_argument("RBM energy: the unknown vector has " + std::to_string(unknowns.size()) +
-                                    " entries, expected " + std::to_string(problem.unknownCount()));
     const int dim = problem.dimension();
     const int bs = problem.blockSize();
     const int rotationCount = problem.rotationSize();
@@ -312,6 +318,169 @@ double evaluate(const RbmProblem& problem, RotationModel model, const std::vecto
     return energy;
 }
 
+// The same pass shared out over threads (ThreadCount.hpp), bitwise equal to it for any
+// thread count: every sum is formed in the serial pass's order — centres ascending, each
+// centre's edges in order. The terms an edge gives the other end (u_j of ∇, the u_j
+// diagonal and the (i, j), (j, i) blocks of ∇²) are gathered by that end instead of
+// scattered: an entry of centre i's row receives the terms of the centres j < i, then i's
+// own, then those of j > i, as the serial pass adds them (with w_ji = w_ij,
+// RbmProblem::edgeWeights). The energy is the ordered sum of per-edge terms. Gathering
+// forms each residual at both ends, about twice the serial arithmetic for ∇: it pays only
+// when the work really is shared (tests/ThreadDeterminismTest.cpp compares both).
+double evaluateThreaded(const RbmProblem& problem, RotationModel model, const std::vector<Vector3>& prescribed,
+                        std::span<const double> unknowns, double* gradient, double* hessian, bool includeCurvature)
+{
+    const int dim = problem.dimension();
+    const int bs = problem.blockSize();
+    const int rotationCount = problem.rotationSize();
+    const int unknownNodeCount = problem.unknownNodeCount();
+    const std::vector<int>& nodes = problem.unknownNodes();
+    const CellNeighbourGraph& graph = problem.graph();
+    const std::vector<Vector3>& x = problem.referencePoints();
+    const std::vector<double>& weights = problem.edgeWeights();
+    const std::vector<int>& unknownIndex = problem.unknownIndex();
+    const BlockPattern& pattern = problem.blockPattern();
+    const std::vector<int>& edgeBlock = problem.edgeBlock();
+    const std::vector<int>& edgeTransposeBlock = problem.edgeTransposeBlock();
+    const std::size_t blockArea = static_cast<std::size_t>(bs) * bs;
+
+    if (hessian) {
+        // Zeroed by block rows; the passes below write disjoint entries of each block.
+#pragma omp parallel for schedule(static) if (worthThreading(graph.neighbours.size()))
+        for (int a = 0; a < unknownNodeCount; ++a)
+            std::fill(hessian + blockArea * pattern.rowOffsets[a], hessian + blockArea * pattern.rowOffsets[a + 1], 0.0);
+    }
+
+    auto displacementOf = [&](int node) {
+        const int b = unknownIndex[node];
+        if (b < 0) return prescribed[node];
+        const double* block = unknowns.data() + static_cast<std::size_t>(b) * bs;
+        return Vector3{block[0], block[1], dim == 3 ? block[2] : 0.0};
+    };
+    auto offsetOf = [&](int from, int to) {
+        Vector3 d = x[to] - x[from];
+        if (dim == 2) d.z = 0.0;
+        return d;
+    };
+    // r of edge e = (i → j) with centre i's rotation.
+    auto residualOf = [&](int i, int j, const Matrix3& rotation, const Vector3& ui) {
+        const Vector3 d = offsetOf(i, j);
+        const Vector3 rotated = rotation * d;
+        return displacementOf(j) - ui + (d - rotated);
+    };
+
+    std::vector<double> edgeEnergy(graph.neighbours.size());
+    // The gradient's u_i rows need every neighbour's rotation: computed first.
+    std::vector<Matrix3> rotations(gradient ? static_cast<std::size_t>(unknownNodeCount) : 0);
+    if (gradient) {
+#pragma omp parallel for schedule(static) if (worthThreading(graph.neighbours.size()))
+        for (int a = 0; a < unknownNodeCount; ++a)
+            rotations[a] = rotationDerivatives(dim, model, unknowns.data() + static_cast<std::size_t>(a) * bs + dim).rotation;
+    }
+
+#pragma omp parallel for schedule(static) if (worthThreading(graph.neighbours.size()))
+    for (int a = 0; a < unknownNodeCount; ++a) {
+        const int i = nodes[a];
+        const double* block = unknowns.data() + static_cast<std::size_t>(a) * bs;
+        const RotationDerivatives rotation = rotationDerivatives(dim, model, block + dim);
+        const Vector3 ui{block[0], block[1], dim == 3 ? block[2] : 0.0};
+        double* gi = gradient ? gradient + static_cast<std::size_t>(a) * bs : nullptr;
+        double* hii = hessian ? hessian + blockArea * pattern.diagonal[a] : nullptr;
+        const int split = firstEdgeAfter(graph, i);
+
+        // +w r of the edge j → i of an unknown neighbour j (centre j's u_j-term of ∇).
+        auto addIncoming = [&](int e) {
+            const int j = graph.neighbours[e];
+            const int b = unknownIndex[j];
+            if (b < 0) return;
+            const double* blockJ = unknowns.data() + static_cast<std::size_t>(b) * bs;
+            const Vector3 uj{blockJ[0], blockJ[1], dim == 3 ? blockJ[2] : 0.0};
+            const double w = weights[e];   // w_ji = w_ij (RbmProblem::edgeWeights)
+            const Vector3 r = residualOf(j, i, rotations[b], uj);
+            for (int q = 0; q < dim; ++q) gi[q] += w * r[q];
+        };
+        if (gi) {
+            for (int k = 0; k < bs; ++k) gi[k] = 0.0;
+            for (int e = graph.offsets[i]; e < split; ++e) addIncoming(e);
+        }
+
+        for (int e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e) {
+            const int j = graph.neighbours[e];
+            const double w = weights[e];
+            const Vector3 d = offsetOf(i, j);
+            const Vector3 r = residualOf(i, j, rotation.rotation, ui);
+            edgeEnergy[e] = 0.5 * w * normSquared(r);
+            if (!gradient && !hessian) continue;
+
+            std::array<Vector3, 3> derivative;  // a_k
+            for (int k = 0; k < rotationCount; ++k) derivative[k] = rotation.first[k] * d;
+            const int b = unknownIndex[j];
+
+            if (gradient) {
+                for (int q = 0; q < dim; ++q) gi[q] -= w * r[q];
+                for (int k = 0; k < rotationCount; ++k) gi[dim + k] -= w * dot(derivative[k], r);
+            }
+            if (hessian) {
+                // (u_i, φ_i), (φ_i, u_i), (φ_i, φ_i); the (u_i, u_i) diagonal is gathered below.
+                for (int k = 0; k < rotationCount; ++k) {
+                    for (int q = 0; q < dim; ++q) {
+                        hii[q * bs + dim + k] += w * derivative[k][q];
+                        hii[(dim + k) * bs + q] += w * derivative[k][q];
+                    }
+                    for (int l = 0; l < rotationCount; ++l) {
+                        const double curvature =
+                            includeCurvature ? dot(r, rotation.second[symmetricIndex(k, l)] * d) : 0.0;
+                        hii[(dim + k) * bs + dim + l] += w * (dot(derivative[k], derivative[l]) - curvature);
+                    }
+                }
+                if (b >= 0) {
+                    // Entries only this edge writes: (φ_i, u_j) of block (i, j), (u_j, φ_i) of
+                    // block (j, i). The (u, u) diagonal of block (i, j) sums −w of both
+                    // directions (w_ij = w_ji); with two terms the order does not matter.
+                    double* hij = hessian + blockArea * edgeBlock[e];
+                    double* hji = hessian + blockArea * edgeTransposeBlock[e];
+                    for (int q = 0; q < dim; ++q) hij[q * bs + q] = (0.0 - w) - w;
+                    for (int k = 0; k < rotationCount; ++k) {
+                        for (int q = 0; q < dim; ++q) {
+                            hij[(dim + k) * bs + q] = 0.0 - w * derivative[k][q];
+                            hji[q * bs + dim + k] = 0.0 - w * derivative[k][q];
+                        }
+                    }
+                }
+            }
+        }
+        if (gi)
+            for (int e = split; e < graph.offsets[i + 1]; ++e) addIncoming(e);
+        if (hessian) {
+            // (u_i, u_i) diagonal: w of the edges j → i of unknown j < i, then of i's own
+            // edges, then of unknown j > i.
+            double diagonal = 0.0;
+            for (int e = graph.offsets[i]; e < split; ++e)
+                if (unknownIndex[graph.neighbours[e]] >= 0) diagonal += weights[e];   // w_ji = w_ij
+            for (int e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e) diagonal += weights[e];
+            for (int e = split; e < graph.offsets[i + 1]; ++e)
+                if (unknownIndex[graph.neighbours[e]] >= 0) diagonal += weights[e];
+            for (int q = 0; q < dim; ++q) hii[q * bs + q] = diagonal;
+        }
+    }
+
+    double energy = 0.0;
+    for (int i : nodes)
+        for (int e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e) energy += edgeEnergy[e];
+    return energy;
+}
+
+double evaluate(const RbmProblem& problem, RotationModel model, const std::vector<Vector3>& prescribed,
+                std::span<const double> unknowns, double* gradient, double* hessian, bool includeCurvature = true)
+{
+    if (static_cast<int>(unknowns.size()) != problem.unknownCount())
+        throw std::invalid_argument("RBM energy: the unknown vector has " + std::to_string(unknowns.size()) +
+                                    " entries, expected " + std::to_string(problem.unknownCount()));
+    if (worthThreading(problem.graph().neighbours.size()) && threadsAvailable() > 1)
+        return evaluateThreaded(problem, model, prescribed, unknowns, gradient, hessian, includeCurvature);
+    return evaluateSerially(problem, model, prescribed, unknowns, gradient, hessian, includeCurvature);
+}
+
 } // namespace
 
 double RbmEnergy::value(std::span<const double> unknowns) const
@@ -350,8 +519,12 @@ double RbmEnergy::gradientRoundoffNorm(std::span<const double> unknowns) const
     const CellNeighbourGraph& graph = problem_.graph();
     const std::vector<Vector3>& x = problem_.referencePoints();
     const bool planar = problem_.dimension() == 2;
-    double sum = 0.0;
-    for (int i : problem_.unknownNodes()) {
+    const std::vector<int>& nodes = problem_.unknownNodes();
+    const int unknownNodeCount = problem_.unknownNodeCount();
+    std::vector<double> magnitudes(static_cast<std::size_t>(unknownNodeCount));
+#pragma omp parallel for schedule(static) if (worthThreading(graph.neighbours.size()))
+    for (int a = 0; a < unknownNodeCount; ++a) {
+        const int i = nodes[a];
         double magnitude = 0.0;
         for (int e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e) {
             const int j = graph.neighbours[e];
@@ -359,8 +532,10 @@ double RbmEnergy::gradientRoundoffNorm(std::span<const double> unknowns) const
             if (planar) d.z = 0.0;
             magnitude += problem_.edgeWeights()[e] * (norm(state.displacement[i]) + norm(state.displacement[j]) + norm(d));
         }
-        sum += problem_.dimension() * magnitude * magnitude;
+        magnitudes[a] = magnitude;
     }
+    double sum = 0.0;  // in node order, whatever the thread count
+    for (double magnitude : magnitudes) sum += problem_.dimension() * magnitude * magnitude;
     return std::numeric_limits<double>::epsilon() * std::sqrt(sum);
 }
 

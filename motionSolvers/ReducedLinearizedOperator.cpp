@@ -1,5 +1,7 @@
 #include "ReducedLinearizedOperator.hpp"
 
+#include "ThreadCount.hpp"
+
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -92,7 +94,7 @@ void ReducedLinearizedOperator::bestRotations(std::span<const Vector3> displacem
     const std::vector<int>& unknownNodes = problem_.unknownNodes();
     const bool planar = problem_.dimension() == 2;
     const int count = problem_.unknownNodeCount();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (worthThreading(graph.neighbours.size()))
     for (int a = 0; a < count; ++a) {
         const int i = unknownNodes[a];
         Vector3 b{};
@@ -123,7 +125,7 @@ void ReducedLinearizedOperator::gradient(std::span<const Vector3> displacement, 
     const bool planar = dimension == 2;
     const int count = problem_.unknownNodeCount();
     const std::vector<Vector3>& rotation = workRotation_;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (worthThreading(graph.neighbours.size()))
     for (int a = 0; a < count; ++a) {
         const int k = unknownNodes[a];
         Vector3 g{};

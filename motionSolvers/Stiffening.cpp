@@ -1,5 +1,7 @@
 #include "Stiffening.hpp"
 
+#include "ThreadCount.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -224,12 +226,17 @@ std::vector<double> stiffeningFactors(const CellNeighbourGraph& graph, std::span
         if (dimension == 2) p.z = 0.0;
         return p;
     };
+    const Label nodeCount = graph.nodeCount();
+    // A minimum does not depend on the order it is taken in.
     double shortest = std::numeric_limits<double>::infinity();
-    for (Label i = 0; i < graph.nodeCount(); ++i)
+#pragma omp parallel for schedule(static) reduction(min : shortest) if (worthThreading(graph.neighbours.size()))
+    for (Label i = 0; i < nodeCount; ++i)
         for (Label e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e)
             shortest = std::min(shortest, norm(position(graph.neighbours[e]) - position(i)));
     if (!(shortest > 0.0) || !std::isfinite(shortest)) return factors;
-    for (Label i = 0; i < graph.nodeCount(); ++i) {
+    // Each edge pair i < j is set by row i, in both directions: every factor has one writer.
+#pragma omp parallel for schedule(static) if (worthThreading(graph.neighbours.size()))
+    for (Label i = 0; i < nodeCount; ++i) {
         for (Label e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e) {
             const Label j = graph.neighbours[e];
             if (j < i) continue;  // set both directions from the i < j one: exactly symmetric

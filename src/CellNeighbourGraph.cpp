@@ -2,10 +2,16 @@
 
 #include "MeshTopology.hpp"
 #include "PlanarMesh.hpp"
+#include "ThreadCount.hpp"
 
 #include <algorithm>
 #include <stdexcept>
 #include <string>
+#include <vector>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 namespace rbm {
 
@@ -43,26 +49,56 @@ CellNeighbourGraph buildCellNeighbourGraph(Label nodeCount, std::span<const Labe
     }
 
     // Row i: the union of the points of i's cells, deduplicated with a per-node stamp
-    // (no set, no per-row allocation), then sorted.
+    // (no set, no per-row allocation), then sorted. Threads build contiguous ranges of rows
+    // into their own buffers, concatenated in row order: the graph does not depend on the
+    // thread count.
     CellNeighbourGraph graph;
-    graph.offsets.reserve(static_cast<std::size_t>(nodeCount) + 1);
-    graph.neighbours.reserve(cellPoints.size() * 4);
-    std::vector<Label> lastRow(static_cast<std::size_t>(nodeCount), -1);
-    for (Label i = 0; i < nodeCount; ++i) {
-        const auto rowBegin = graph.neighbours.size();
-        lastRow[i] = i;   // never list i itself
-        for (Label k = nodeCellOffsets[i]; k < nodeCellOffsets[i + 1]; ++k) {
-            const Label c = nodeCells[k];
-            for (Label j = cellOffsets[c]; j < cellOffsets[c + 1]; ++j) {
-                const Label p = cellPoints[j];
-                if (lastRow[p] != i) {
-                    lastRow[p] = i;
-                    graph.neighbours.push_back(p);
+    graph.offsets.assign(static_cast<std::size_t>(nodeCount) + 1, 0);
+    std::vector<std::vector<Label>> rangeNeighbours;
+    std::vector<Label> rangeStart;
+    const bool threaded = worthThreading(cellPoints.size());
+#pragma omp parallel if (threaded)
+    {
+        int threads = 1, thread = 0;
+#ifdef _OPENMP
+        threads = omp_get_num_threads();
+        thread = omp_get_thread_num();
+#endif
+#pragma omp single
+        {
+            rangeNeighbours.resize(static_cast<std::size_t>(threads));
+            rangeStart.resize(static_cast<std::size_t>(threads) + 1);
+            for (int t = 0; t <= threads; ++t)
+                rangeStart[t] = static_cast<Label>(static_cast<long long>(nodeCount) * t / threads);
+        }
+        std::vector<Label>& neighbours = rangeNeighbours[thread];
+        const Label first = rangeStart[thread];
+        const Label end = rangeStart[thread + 1];
+        neighbours.reserve(static_cast<std::size_t>(nodeCellOffsets[end] - nodeCellOffsets[first]) * 4);
+        std::vector<Label> lastRow(static_cast<std::size_t>(nodeCount), -1);
+        for (Label i = first; i < end; ++i) {
+            const auto rowBegin = neighbours.size();
+            lastRow[i] = i;   // never list i itself
+            for (Label k = nodeCellOffsets[i]; k < nodeCellOffsets[i + 1]; ++k) {
+                const Label c = nodeCells[k];
+                for (Label j = cellOffsets[c]; j < cellOffsets[c + 1]; ++j) {
+                    const Label p = cellPoints[j];
+                    if (lastRow[p] != i) {
+                        lastRow[p] = i;
+                        neighbours.push_back(p);
+                    }
                 }
             }
+            std::sort(neighbours.begin() + static_cast<std::ptrdiff_t>(rowBegin), neighbours.end());
+            graph.offsets[i + 1] = static_cast<Label>(neighbours.size() - rowBegin);   // row length for now
         }
-        std::sort(graph.neighbours.begin() + static_cast<std::ptrdiff_t>(rowBegin), graph.neighbours.end());
-        graph.offsets.push_back(static_cast<Label>(graph.neighbours.size()));
+    }
+    for (Label i = 0; i < nodeCount; ++i) graph.offsets[i + 1] += graph.offsets[i];
+    graph.neighbours.resize(static_cast<std::size_t>(graph.offsets.back()));
+#pragma omp parallel for schedule(static) if (threaded)
+    for (std::size_t t = 0; t < rangeNeighbours.size(); ++t) {
+        std::copy(rangeNeighbours[t].begin(), rangeNeighbours[t].end(),
+                  graph.neighbours.begin() + graph.offsets[rangeStart[t]]);
     }
     return graph;
 }

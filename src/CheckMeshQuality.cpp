@@ -1,5 +1,7 @@
 #include "CheckMeshQuality.hpp"
 
+#include "ThreadCount.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -201,6 +203,24 @@ CheckMeshQuality computeCheckMeshQuality(const PolyMesh& mesh, std::span<const V
     Vector3 boundarySum;
     double boundaryMagnitudeSum = 0.0;
 
+    // The costly per-face measures first, by threads (each writes its own faces); the sums,
+    // minima and counts below then run in face order as before, whatever the thread count.
+    std::vector<double> faceCosine(static_cast<std::size_t>(q.internalFaceCount));
+    std::vector<double> faceSkew(static_cast<std::size_t>(q.faceCount));
+#pragma omp parallel for schedule(static) if (worthThreading(static_cast<std::size_t>(q.faceCount)))
+    for (Label f = 0; f < q.faceCount; ++f) {
+        const Vector3& S = faceAreas[f];
+        const Vector3& fc = faceCentres[f];
+        const Label own = owner[f];
+        if (f < q.internalFaceCount) {
+            const Label nei = neighbour[f];
+            faceCosine[f] = faceNonOrthogonalityCosine(cellCentres[own], cellCentres[nei], S);
+            faceSkew[f] = faceSkewness(mesh.face(f), points, fc, S, cellCentres[own], cellCentres[nei]);
+        } else {
+            faceSkew[f] = boundaryFaceSkewness(mesh.face(f), points, fc, S, cellCentres[own]);
+        }
+    }
+
     for (Label f = 0; f < q.faceCount; ++f) {
         const Vector3& S = faceAreas[f];
         const Vector3& fc = faceCentres[f];
@@ -225,7 +245,7 @@ CheckMeshQuality computeCheckMeshQuality(const PolyMesh& mesh, std::span<const V
             if ((1.0 / 3.0) * dot(S, cellCentres[nei] - fc) < minPyramidVolume) ++q.incorrectlyOrientedPyramidCount;
 
             // polyMesh::checkFaceOrthogonality
-            const double cosine = faceNonOrthogonalityCosine(cellCentres[own], cellCentres[nei], S);
+            const double cosine = faceCosine[f];
             if (cosine < severeCosine) {
                 if (cosine > small) {
                     ++q.severelyNonOrthogonalFaceCount;
@@ -237,7 +257,7 @@ CheckMeshQuality computeCheckMeshQuality(const PolyMesh& mesh, std::span<const V
             sumCosine += cosine;
 
             // polyMesh::checkFaceSkewness
-            const double skew = faceSkewness(mesh.face(f), points, fc, S, cellCentres[own], cellCentres[nei]);
+            const double skew = faceSkew[f];
             maxSkew = std::max(maxSkew, skew);
             if (skew > CheckMeshQuality::skewnessThreshold) ++q.severelySkewFaceCount;
 
@@ -262,7 +282,7 @@ CheckMeshQuality computeCheckMeshQuality(const PolyMesh& mesh, std::span<const V
             boundarySum += S;
             boundaryMagnitudeSum += area;
 
-            const double skew = boundaryFaceSkewness(mesh.face(f), points, fc, S, cellCentres[own]);
+            const double skew = faceSkew[f];
             maxSkew = std::max(maxSkew, skew);
             if (skew > CheckMeshQuality::skewnessThreshold) ++q.severelySkewFaceCount;
         }

@@ -1,5 +1,7 @@
 #include "MeshGeometry.hpp"
 
+#include "ThreadCount.hpp"
+
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -25,6 +27,8 @@ void computeFaceCentresAndAreas(const PolyMesh& mesh, std::span<const Vector3> p
     faceCentres.resize(static_cast<std::size_t>(faceCount));
     faceAreas.resize(static_cast<std::size_t>(faceCount));
 
+    // Every face on its own: threads write only their own faces.
+#pragma omp parallel for schedule(static) if (worthThreading(static_cast<std::size_t>(faceCount)))
     for (Label f = 0; f < faceCount; ++f) {
         const auto face = mesh.face(f);
         const std::size_t n = face.size();

@@ -2,6 +2,7 @@
 
 #include "CellShape.hpp"
 #include "InputError.hpp"
+#include "ThreadCount.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -54,6 +55,7 @@ QualityReport QualityEvaluator::evaluate(std::span<const Vector3> points)
         // 2D node positions: the front-plane points in the plane's frame.
         const Label nodes = twoD_->nodeCount();
         nodePositions_.resize(static_cast<std::size_t>(nodes));
+#pragma omp parallel for schedule(static) if (worthThreading(static_cast<std::size_t>(nodes)))
         for (Label n = 0; n < nodes; ++n) nodePositions_[n] = twoD_->frame.toLocal(points[twoD_->frontPointOfNode[n]]);
         report.thesis = computeThesisQuality2D(twoD_->planar, nodePositions_, thesisWorkspace_);
     } else {

@@ -1,5 +1,7 @@
 #include "ThesisQuality.hpp"
 
+#include "ThreadCount.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -135,20 +137,35 @@ ThesisQuality computeThesisQuality2D(const PlanarMesh& mesh, std::span<const Vec
     quality.dimension = 2;
     quality.cellCount = mesh.cellCount();
 
-    StatisticsAccumulator meanRatio;
-    StatisticsAccumulator shape;
+    // Per cell and per edge by threads (each writes its own slots), then the statistics in
+    // cell and edge order: the same figures for any thread count.
+    const Label cellCount = quality.cellCount;
     auto& centres = workspace.cellCentres;
-    centres.resize(static_cast<std::size_t>(quality.cellCount));
-    for (Label c = 0; c < quality.cellCount; ++c) {
+    centres.resize(static_cast<std::size_t>(cellCount));
+    std::vector<double> shapeValue(static_cast<std::size_t>(cellCount));
+    std::vector<std::uint8_t> invertedCell(static_cast<std::size_t>(cellCount));
+#pragma omp parallel for schedule(static) if (worthThreading(static_cast<std::size_t>(cellCount)))
+    for (Label c = 0; c < cellCount; ++c) {
         const auto polygon = mesh.cell(c);
         double area = 0.0;
         centres[c] = polygonCentroid(polygon, positions, area);
-        if (area <= 0.0) ++quality.invertedCellCount;
+        invertedCell[c] = area <= 0.0;
         if (polygon.size() == 3) {
-            meanRatio.add(triangleMeanRatio(positions[polygon[0]], positions[polygon[1]], positions[polygon[2]]));
+            shapeValue[c] = triangleMeanRatio(positions[polygon[0]], positions[polygon[1]], positions[polygon[2]]);
         } else if (polygon.size() == 4) {
-            shape.add(quadrilateralShape(positions[polygon[0]], positions[polygon[1]], positions[polygon[2]],
-                                         positions[polygon[3]]));
+            shapeValue[c] = quadrilateralShape(positions[polygon[0]], positions[polygon[1]], positions[polygon[2]],
+                                               positions[polygon[3]]);
+        }
+    }
+    StatisticsAccumulator meanRatio;
+    StatisticsAccumulator shape;
+    for (Label c = 0; c < cellCount; ++c) {
+        const std::size_t size = mesh.cell(c).size();
+        if (invertedCell[c]) ++quality.invertedCellCount;
+        if (size == 3) {
+            meanRatio.add(shapeValue[c]);
+        } else if (size == 4) {
+            shape.add(shapeValue[c]);
         } else {
             ++quality.otherPolygonCount;
         }
@@ -156,9 +173,10 @@ ThesisQuality computeThesisQuality2D(const PlanarMesh& mesh, std::span<const Vec
     quality.triangleMeanRatio = meanRatio.result();
     quality.quadrilateralShape = shape.result();
 
-    StatisticsAccumulator nonOrthogonality;
-    StatisticsAccumulator skewness;
-    for (Label e = 0; e < mesh.internalEdgeCount(); ++e) {
+    const Label edgeCount = mesh.internalEdgeCount();
+    std::vector<double> angle(static_cast<std::size_t>(edgeCount)), skew(static_cast<std::size_t>(edgeCount));
+#pragma omp parallel for schedule(static) if (worthThreading(static_cast<std::size_t>(edgeCount)))
+    for (Label e = 0; e < edgeCount; ++e) {
         const auto [first, second] = mesh.edge(e);
         const Vector3& a = positions[first];
         const Vector3& b = positions[second];
@@ -169,8 +187,14 @@ ThesisQuality computeThesisQuality2D(const PlanarMesh& mesh, std::span<const Vec
         Vector3 neighbourCentre = centres[mesh.edgeNeighbour[e]];
         // Planar metrics: ignore z (the plane coordinate).
         midpoint.z = ownerCentre.z = neighbourCentre.z = 0.0;
-        nonOrthogonality.add(nonOrthogonalityAngle(ownerCentre, neighbourCentre, normal));
-        skewness.add(centreLineSkewness(ownerCentre, neighbourCentre, midpoint, normal));
+        angle[e] = nonOrthogonalityAngle(ownerCentre, neighbourCentre, normal);
+        skew[e] = centreLineSkewness(ownerCentre, neighbourCentre, midpoint, normal);
+    }
+    StatisticsAccumulator nonOrthogonality;
+    StatisticsAccumulator skewness;
+    for (Label e = 0; e < edgeCount; ++e) {
+        nonOrthogonality.add(angle[e]);
+        skewness.add(skew[e]);
     }
     quality.nonOrthogonality = nonOrthogonality.result();
     quality.skewness = skewness.result();
@@ -200,9 +224,18 @@ ThesisQuality computeThesisQuality3D(const PolyMesh& mesh, const MeshGeometry& g
     inverted.assign(static_cast<std::size_t>(quality.cellCount), 0);
     const auto& centres = geometry.cellCentres;
 
+    const Label internalFaceCount = mesh.internalFaceCount();
+    std::vector<double> angle(static_cast<std::size_t>(internalFaceCount)),
+        skew(static_cast<std::size_t>(internalFaceCount));
+#pragma omp parallel for schedule(static) if (worthThreading(static_cast<std::size_t>(internalFaceCount)))
+    for (Label f = 0; f < internalFaceCount; ++f) {
+        const Label own = mesh.owner[f];
+        const Label nei = mesh.neighbour[f];
+        angle[f] = nonOrthogonalityAngle(centres[own], centres[nei], geometry.faceAreas[f]);
+        skew[f] = centreLineSkewness(centres[own], centres[nei], geometry.faceCentres[f], geometry.faceAreas[f]);
+    }
     StatisticsAccumulator nonOrthogonality;
     StatisticsAccumulator skewness;
-    const Label internalFaceCount = mesh.internalFaceCount();
     for (Label f = 0; f < faceCount; ++f) {
         const Vector3& S = geometry.faceAreas[f];
         const Vector3& fc = geometry.faceCentres[f];
@@ -212,8 +245,8 @@ ThesisQuality computeThesisQuality3D(const PolyMesh& mesh, const MeshGeometry& g
         if (f < internalFaceCount) {
             const Label nei = mesh.neighbour[f];
             if (dot(S, centres[nei] - fc) <= 0.0) inverted[nei] = 1;
-            nonOrthogonality.add(nonOrthogonalityAngle(centres[own], centres[nei], S));
-            skewness.add(centreLineSkewness(centres[own], centres[nei], fc, S));
+            nonOrthogonality.add(angle[f]);
+            skewness.add(skew[f]);
         }
     }
     for (Label c = 0; c < quality.cellCount; ++c) {

@@ -9,6 +9,7 @@
 #include "RbmEnergy.hpp"
 #include "RbmProblem.hpp"
 #include "ReducedLinearizedOperator.hpp"
+#include "ThreadCount.hpp"
 
 #include <gtest/gtest.h>
 
@@ -231,6 +232,36 @@ TEST(MatrixFreeLinearized, ReproducesATranslationExactly)
         for (const Vector3& omega : result.rotation) rotation = std::max(rotation, norm(omega));
         EXPECT_LT(rotation, 1e-11) << dimension;
     }
+}
+
+TEST(MatrixFreeLinearized, ResultsDoNotDependOnTheThreadCount)
+{
+    // 13³ nodes, 57 000 directed edges: above the threading threshold (ThreadCount.hpp).
+    const GridCase c = gridCase(3, 12, true, 13);
+    ASSERT_TRUE(worthThreading(c.problem->graph().neighbours.size()));
+    const ReducedLinearizedOperator reduced(*c.problem);
+    std::mt19937 random(5);
+    std::uniform_real_distribution<double> value(-0.1, 0.1);
+    std::vector<double> x(reduced.size());
+    for (double& entry : x) entry = value(random);
+    const int before = threadCount();
+    std::vector<std::vector<double>> products, solutions;
+    for (int threads : {1, 2, 3}) {
+        setThreadCount(threads);
+        std::vector<double> y(reduced.size());
+        reduced.apply(x, y);
+        products.push_back(y);
+        CoupledLinearizedSolver solver(*c.problem, {LinearSolverKind::matrixFree, 1e-10});
+        const RbmResult result = solver.solve(c.prescribed);
+        std::vector<double> unknowns(c.problem->unknownCount());
+        packUnknowns(*c.problem, result, unknowns);
+        solutions.push_back(unknowns);
+    }
+    setThreadCount(before);
+    EXPECT_EQ(products[1], products[0]);   // bit for bit
+    EXPECT_EQ(products[2], products[0]);
+    EXPECT_EQ(solutions[1], solutions[0]);
+    EXPECT_EQ(solutions[2], solutions[0]);
 }
 
 TEST(MatrixFreeLinearized, IsTheAutomaticChoiceIn3DOnly)

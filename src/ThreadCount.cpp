@@ -1,0 +1,94 @@
+#include "ThreadCount.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace rbm {
+
+namespace {
+
+bool isSet(const char* variable)
+{
+    const char* value = std::getenv(variable);
+    return value != nullptr && *value != '\0';
+}
+
+} // namespace
+
+bool worthThreading(std::size_t work) { return work >= minimumThreadedWork; }
+
+int policyThreadCount(int mpiRanks)
+{
+#ifdef _OPENMP
+    // OpenMP has read OMP_NUM_THREADS at start-up (and ignored it if malformed); without it,
+    // omp_get_num_procs() is the number of cores in this process' affinity mask, which under
+    // mpirun's default binding is already the rank's own core(s).
+    if (isSet("OMP_NUM_THREADS")) return std::max(1, omp_get_max_threads());
+    if (mpiRanks > 1) return 1;
+    return std::max(1, omp_get_num_procs());
+#else
+    (void)mpiRanks;
+    return 1;
+#endif
+}
+
+int applyThreadCountPolicy(int mpiRanks)
+{
+    const int threads = policyThreadCount(mpiRanks);
+#ifdef _OPENMP
+    omp_set_num_threads(threads);
+#endif
+    return threads;
+}
+
+void setThreadCount(int threads)
+{
+#ifdef _OPENMP
+    omp_set_dynamic(0);
+    omp_set_num_threads(std::max(1, threads));
+#else
+    (void)threads;
+#endif
+}
+
+int threadCount()
+{
+#ifdef _OPENMP
+    return omp_get_max_threads();
+#else
+    return 1;
+#endif
+}
+
+int threadsAvailable()
+{
+    int threads = 1;
+#ifdef _OPENMP
+    if (threadCount() == 1) return 1;
+#pragma omp parallel
+    {
+#pragma omp single
+        threads = omp_get_num_threads();
+    }
+#endif
+    return threads;
+}
+
+std::string describeThreadCount()
+{
+#ifdef _OPENMP
+    const std::string count = std::to_string(threadCount());
+    const std::string source = isSet("OMP_NUM_THREADS") ? "OMP_NUM_THREADS" : "OMP_NUM_THREADS unset";
+    if (omp_get_dynamic() && threadCount() > 1)
+        return "up to " + count + " (OpenMP, " + source + ", OMP_DYNAMIC: fewer when the machine is loaded; results do not depend on it)";
+    return count + " (OpenMP, " + source + "; results do not depend on it)";
+#else
+    return "1 (built without OpenMP)";
+#endif
+}
+
+} // namespace rbm

@@ -1,0 +1,56 @@
+#pragma once
+// How many threads rbm's own loops use (OpenMP): the cell-neighbour graph, the energy's
+// gradient and Hessian blocks, the local rotation fits, the decoupled assembly and the
+// stiffening factors. PETSc, MUMPS and hypre are not affected (OpenBLAS, under MUMPS, has
+// its own OPENBLAS_NUM_THREADS). Every threaded loop gives bitwise the same result for any
+// thread count: each thread writes only its own slots and every sum is formed in a fixed
+// order (docs/rbmMoveMesh.md, "Threads"; tests/ThreadDeterminismTest.cpp).
+//
+// The policy, in one place:
+//   OMP_NUM_THREADS set       → exactly that many (OpenMP's own reading of it);
+//   otherwise, one MPI rank   → the number of cores this process may run on (its affinity
+//                               mask: under a batch system, the cores it was given);
+//   otherwise (several ranks) → 1 per rank, so that N ranks on N cores do not oversubscribe.
+// On a machine shared with other jobs, OMP_NUM_THREADS=1 (or OMP_DYNAMIC=true, OpenMP's own
+// load adjustment) avoids threads that wait for a core at every barrier. A default that
+// adapts to the load was tried and dropped: on a dedicated machine a long run counts its own
+// load and falls back to one thread. rbmMoveMesh applies the policy with its MPI rank count;
+// other programs get OpenMP's default (OMP_NUM_THREADS, else every core). Without OpenMP
+// (a compiler without it) everything runs on 1 thread.
+
+#include <cstddef>
+#include <string>
+
+namespace rbm {
+
+// Loops with less work than this (edges, faces or cells visited) run on one thread: a
+// parallel region costs microseconds on an idle machine but up to a scheduler time slice
+// (milliseconds) on a busy one, which would make the many small evaluations of a small
+// problem slower. Use as `#pragma omp parallel for schedule(static) if (worthThreading(work))`.
+// (Defined out of line: every threaded file then links ThreadCount.cpp and its start-up default.)
+constexpr std::size_t minimumThreadedWork = 20000;
+bool worthThreading(std::size_t work);
+
+// The thread count the policy above gives for a process that is one of mpiRanks ranks
+// (the most it uses when it adapts to the load).
+int policyThreadCount(int mpiRanks);
+
+// Applies the policy for mpiRanks ranks; returns policyThreadCount(mpiRanks).
+int applyThreadCountPolicy(int mpiRanks);
+
+// Exactly this many threads (≥ 1) for the following threaded loops, whatever the load
+// (ignored without OpenMP).
+void setThreadCount(int threads);
+
+// The most threads the next threaded loop will use (1 without OpenMP).
+int threadCount();
+
+// The threads the next threaded loop will really get: threadCount(), or fewer when OpenMP
+// adapts to the load (asks OpenMP with an empty parallel region, a few microseconds). For
+// loops whose threaded form costs more arithmetic than their serial one.
+int threadsAvailable();
+
+// For the start-up log, e.g. "up to 2 (OpenMP, fewer when the machine is loaded; ...)".
+std::string describeThreadCount();
+
+} // namespace rbm
