@@ -144,12 +144,7 @@ void MatrixFreeLinearizedSystem::precondition(Vec x, Vec y)
     Vec input = x;
     if (problem_.hasSlidingNodes()) {
         RBM_CHECK_PETSC(VecCopy(x, projected_));
-        PetscScalar* values = nullptr;
-        PetscInt size = 0;
-        RBM_CHECK_PETSC(VecGetLocalSize(projected_, &size));
-        RBM_CHECK_PETSC(VecGetArray(projected_, &values));
-        problem_.projectSliding({values, static_cast<std::size_t>(size)}, dimension);
-        RBM_CHECK_PETSC(VecRestoreArray(projected_, &values));
+        projectSliding(projected_);
         input = projected_;
     }
     for (int component = 0; component < dimension; ++component) {
@@ -157,14 +152,17 @@ void MatrixFreeLinearizedSystem::precondition(Vec x, Vec y)
         RBM_CHECK_PETSC(PCApply(laplacianPreconditioner_, componentIn_, componentOut_));
         RBM_CHECK_PETSC(VecStrideScatter(componentOut_, component, y, INSERT_VALUES));
     }
-    if (problem_.hasSlidingNodes()) {
-        PetscScalar* values = nullptr;
-        PetscInt size = 0;
-        RBM_CHECK_PETSC(VecGetLocalSize(y, &size));
-        RBM_CHECK_PETSC(VecGetArray(y, &values));
-        problem_.projectSliding({values, static_cast<std::size_t>(size)}, dimension);
-        RBM_CHECK_PETSC(VecRestoreArray(y, &values));
-    }
+    if (problem_.hasSlidingNodes()) projectSliding(y);
+}
+
+void MatrixFreeLinearizedSystem::projectSliding(Vec vector) const
+{
+    PetscScalar* values = nullptr;
+    PetscInt size = 0;
+    RBM_CHECK_PETSC(VecGetLocalSize(vector, &size));
+    RBM_CHECK_PETSC(VecGetArray(vector, &values));
+    problem_.projectSliding({values, static_cast<std::size_t>(size)}, problem_.dimension());
+    RBM_CHECK_PETSC(VecRestoreArray(vector, &values));
 }
 
 std::vector<double> MatrixFreeLinearizedSystem::solveUnknowns(std::span<const Vector3> prescribedDisplacement,

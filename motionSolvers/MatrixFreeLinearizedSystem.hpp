@@ -56,6 +56,8 @@ public:
     void precondition(Vec x, Vec y);
 
 private:
+    void projectSliding(Vec vector) const;  // P on a displacement vector, in place
+
     const RbmProblem& problem_;
     ReducedLinearizedOperator operator_;
     InheritedOptions options_;

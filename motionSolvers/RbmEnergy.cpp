@@ -213,6 +213,24 @@ RbmEnergy::RbmEnergy(const RbmProblem& problem, RotationModel model, std::span<c
 
 namespace {
 
+// The terms of edge (i → j) in centre i's rotation rows and columns of its diagonal block:
+// (u_i, φ_i), (φ_i, u_i) from a_k = ∂R/∂φ_k d, and (φ_i, φ_i) = w (a_k·a_l − r·∂²R/∂φ_k∂φ_l d).
+void addRotationBlocks(double* hii, int bs, int dim, int rotationCount, const std::array<Vector3, 3>& derivative,
+                       const RotationDerivatives& rotation, const Vector3& r, const Vector3& d, double w,
+                       bool includeCurvature)
+{
+    for (int k = 0; k < rotationCount; ++k) {
+        for (int q = 0; q < dim; ++q) {
+            hii[q * bs + dim + k] += w * derivative[k][q];
+            hii[(dim + k) * bs + q] += w * derivative[k][q];
+        }
+        for (int l = 0; l < rotationCount; ++l) {
+            const double curvature = includeCurvature ? dot(r, rotation.second[symmetricIndex(k, l)] * d) : 0.0;
+            hii[(dim + k) * bs + dim + l] += w * (dot(derivative[k], derivative[l]) - curvature);
+        }
+    }
+}
+
 // Position of the first edge i → j with j > i (the end of i's row if there is none).
 int firstEdgeAfter(const CellNeighbourGraph& graph, int i)
 {
@@ -285,17 +303,7 @@ double evaluateSerially(const RbmProblem& problem, RotationModel model, const st
             if (hessian) {
                 // (u_i, u_i), (u_i, φ_i), (φ_i, u_i), (φ_i, φ_i)
                 for (int q = 0; q < dim; ++q) hii[q * bs + q] += w;
-                for (int k = 0; k < rotationCount; ++k) {
-                    for (int q = 0; q < dim; ++q) {
-                        hii[q * bs + dim + k] += w * derivative[k][q];
-                        hii[(dim + k) * bs + q] += w * derivative[k][q];
-                    }
-                    for (int l = 0; l < rotationCount; ++l) {
-                        const double curvature =
-                            includeCurvature ? dot(r, rotation.second[symmetricIndex(k, l)] * d) : 0.0;
-                        hii[(dim + k) * bs + dim + l] += w * (dot(derivative[k], derivative[l]) - curvature);
-                    }
-                }
+                addRotationBlocks(hii, bs, dim, rotationCount, derivative, rotation, r, d, w, includeCurvature);
                 if (b >= 0) {
                     double* hjj = hessian + blockArea * pattern.diagonal[b];
                     double* hij = hessian + blockArea * edgeBlock[e];
@@ -422,17 +430,7 @@ double evaluateThreaded(const RbmProblem& problem, RotationModel model, const st
             }
             if (hessian) {
                 // (u_i, φ_i), (φ_i, u_i), (φ_i, φ_i); the (u_i, u_i) diagonal is gathered below.
-                for (int k = 0; k < rotationCount; ++k) {
-                    for (int q = 0; q < dim; ++q) {
-                        hii[q * bs + dim + k] += w * derivative[k][q];
-                        hii[(dim + k) * bs + q] += w * derivative[k][q];
-                    }
-                    for (int l = 0; l < rotationCount; ++l) {
-                        const double curvature =
-                            includeCurvature ? dot(r, rotation.second[symmetricIndex(k, l)] * d) : 0.0;
-                        hii[(dim + k) * bs + dim + l] += w * (dot(derivative[k], derivative[l]) - curvature);
-                    }
-                }
+                addRotationBlocks(hii, bs, dim, rotationCount, derivative, rotation, r, d, w, includeCurvature);
                 if (b >= 0) {
                     // Entries only this edge writes: (φ_i, u_j) of block (i, j), (u_j, φ_i) of
                     // block (j, i). The (u, u) diagonal of block (i, j) sums −w of both

@@ -205,9 +205,11 @@ TEST(MatrixFreeLinearized, EqualsTheAssembledDirectSolution)
         EXPECT_LT(largestDifference(result.rotation, expected.rotation), 1e-8) << dimension << "D" << mirror;
         EXPECT_NEAR(result.energy, expected.energy, 1e-9 * expected.energy);
         // Sliding nodes stay on their planes exactly.
-        for (int node = 0; node < c.problem->nodeCount(); ++node)
-            if (c.problem->kind(node) == NodeKind::sliding && c.points[node].x == 0.0)
+        for (int node = 0; node < c.problem->nodeCount(); ++node) {
+            if (c.problem->kind(node) == NodeKind::sliding && c.points[node].x == 0.0) {
                 EXPECT_NEAR(result.displacement[node].x, 0.01, 1e-15);
+            }
+        }
         // A warm start from the answer needs (almost) no iterations.
         const RbmResult again = matrixFree.solve(c.prescribed, &result);
         EXPECT_LE(again.linearIterations, 2);

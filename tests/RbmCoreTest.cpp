@@ -1064,7 +1064,9 @@ TEST(SlidingNodes, StayOnTheirPlaneAndNewtonAndLocalGlobalAgree)
             }
         }
         // Without the mirror the shear does tilt the plane's nodes (so the check above can fail).
-        if (dimension == 3 && !mirror) EXPECT_GT(inPlaneRotation, 1e-3);
+        if (dimension == 3 && !mirror) {
+            EXPECT_GT(inPlaneRotation, 1e-3);
+        }
         EXPECT_GT(sliding, 3);
     }
 }
@@ -1121,7 +1123,9 @@ TEST(RigidMotionModes, AreOrthonormalAndCostNoEnergyAwayFromPrescribedNodes)
                 }
             }
         }
-        if (dimension != 3) EXPECT_GT(interiorRows, 0);  // the small sliding boxes have none
+        if (dimension != 3) {
+            EXPECT_GT(interiorRows, 0);  // the small sliding boxes have none
+        }
     }
 }
 
