@@ -145,7 +145,10 @@ private:
     void computeNodeClasses();
     // Throws std::runtime_error when the solve's estimated memory (MemoryEstimate.hpp) exceeds
     // what the machine has (or RBM_AVAILABLE_MEMORY_MB): before the solver assembles anything.
-    void checkMemory() const;
+    // Stops a run whose solve would not fit in memory; with `linearSolver automatic`, a 2D
+    // linearized solve whose factorisation would not fit is switched to matrix-free instead
+    // (in dynamicMeshDict_, before the solver reads it) and memoryNote_ says so.
+    void checkMemory();
     // Throws rbm::InputError naming the patch whose condition gave a NaN or infinite
     // displacement at `time` (called after updateBoundaryConditions).
     void checkBoundaryDisplacementIsFinite(double time) const;
@@ -168,6 +171,7 @@ private:
 
     PolyMesh mesh_;
     io::Dictionary dynamicMeshDict_;
+    std::string memoryNote_;  // printed in the header when checkMemory() changed the solver
     io::Dictionary pointDisplacementDictionary_;
     io::PointVectorField boundaryField_;
     std::unique_ptr<motion::MotionSolver> solver_;

@@ -14,6 +14,7 @@
 #include "PointVectorField.hpp"
 #include "PolyMeshReader.hpp"
 #include "PolyMeshWriter.hpp"
+#include "RigidBodyMotionSolver.hpp"
 #include "RunLog.hpp"
 #include "TimeFolderWriter.hpp"
 #include "TimeName.hpp"
@@ -1147,6 +1148,57 @@ private:
     std::string name_;
     std::optional<std::string> old_;
 };
+
+TEST(MoveMeshRun, ALinearized2DSolveWhoseFactorisationDoesNotFitRunsMatrixFree)
+{
+    // The 8 × 8 square, coupled linearized: the direct estimate is 189 × 130 × log2(189) bytes
+    // = 181.4 KiB; matrix-free needs 40 bytes a block and 400 a node, 43.2 KiB.
+    const std::string linearized = "coupling coupled; formulation linearized; subSteps 1;";
+    TempDir reference("memoryReference");
+    writeSquareCase(reference.path(), Control{}, pitchingBoundary, linearized);
+    const RunResult expected = runCase(reference.path(), false);
+    ASSERT_EQ(expected.status, app::exitSuccess) << expected.err;
+    EXPECT_FALSE(contains(expected.out, "Memory        :"));
+
+    TempDir dir("memoryFallback");
+    writeSquareCase(dir.path(), Control{}, pitchingBoundary, linearized);
+    const ScopedEnvironment limit("RBM_AVAILABLE_MEMORY_MB", "0.1");   // 102.4 KiB
+    const RunResult result = runCase(dir.path(), false);
+    ASSERT_EQ(result.status, app::exitSuccess) << result.out << result.err;
+    EXPECT_TRUE(contains(result.out, "Memory        : the direct factorisation would need about 181.4 KiB, only "
+                                     "102.4 KiB is available (RBM_AVAILABLE_MEMORY_MB): solving matrix-free "
+                                     "(linearSolver matrixFree, about 43.2 KiB)"))
+        << result.out;
+    // The same minimum: every written time within the Krylov tolerance of the direct run.
+    ASSERT_EQ(result.points.size(), expected.points.size());
+    double largest = 0.0;
+    for (const auto& [time, points] : expected.points)
+        for (std::size_t p = 0; p < points.size(); ++p) largest = std::max(largest, norm(result.points.at(time)[p] - points[p]));
+    EXPECT_LT(largest, 1e-9);
+
+    // The solver the run really used.
+    TempDir observed("memoryFallbackObserved");
+    writeSquareCase(observed.path(), Control{}, pitchingBoundary, linearized);
+    app::MoveMeshOptions options;
+    options.caseDirectory = observed.path();
+    options.writeVtk = false;
+    std::ostringstream out, err;
+    std::optional<motion::LinearSolverKind> used;
+    EXPECT_EQ(app::runMoveMesh(options, out, err,
+                               [&](const app::StepObservation& step) {
+                                   if (const auto* rbm = dynamic_cast<const motion::RigidBodyMotionSolver*>(&step.solver))
+                                       used = rbm->options().linearSolver;
+                               }),
+              app::exitSuccess);
+    EXPECT_EQ(used, motion::LinearSolverKind::matrixFree);
+
+    // Asked for explicitly, the direct solver is not replaced: the run stops and names the way out.
+    TempDir forced("memoryForcedDirect");
+    writeSquareCase(forced.path(), Control{}, pitchingBoundary, linearized + " linearSolver direct;");
+    const RunResult stopped = runCase(forced.path(), false);
+    EXPECT_EQ(stopped.status, app::exitRunFailed);
+    EXPECT_TRUE(contains(stopped.err, "With 'linearSolver matrixFree;' in rigidBodyMotionSolverCoeffs")) << stopped.err;
+}
 
 TEST(MoveMeshRun, ASolveLargerThanTheMemoryStopsBeforeAssemblingAndSaysHowMuchItNeeds)
 {
