@@ -64,9 +64,6 @@ public:
     // problem.blockPattern(), diagonal included): the preconditioner's operator.
     std::vector<double> displacementLaplacianValues() const;
 
-    // Bytes held by this object per unknown node (the rotation inverses and work arrays).
-    static constexpr double bytesPerUnknownNode = 9 * 8 + 2 * 3 * 8 + 3 * 8;
-
 private:
     const RbmProblem& problem_;
     // Per unknown node: the symmetric 3×3 map b ↦ ω (M⁻¹, or n nᵀ/(nᵀ M n) for a node held
