@@ -26,7 +26,7 @@
 //  Setup also checks OpenFOAM's polyMesh rules across files (upper-triangular order, closed
 //  cells), rejects a patch both moving and sliding (a motion given by name to a symmetry
 //  or symmetryPlane patch), and, before the solver assembles, compares the estimated memory
-//  of the solve (motionSolvers/MemoryEstimate.hpp) with what the machine has.
+//  of the solve (motionSolvers/rigidBodyMotion/MemoryEstimate.hpp) with what the machine has.
 //
 // Restart (startFrom latestTime, or a startTime whose folder an earlier run wrote): the
 // boundary conditions are those of the earliest time folder up to the start time that has

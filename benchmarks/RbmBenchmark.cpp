@@ -571,7 +571,7 @@ std::unique_ptr<motion::RbmSolver> makeSolver(const std::string& variant, const 
 }
 
 // Rough memory of a variant's linear algebra (bytes), to skip runs that cannot fit: the
-// model of motionSolvers/MemoryEstimate.hpp (rbmMoveMesh checks the same before it assembles).
+// model of motionSolvers/rigidBodyMotion/MemoryEstimate.hpp (rbmMoveMesh checks the same before it assembles).
 double estimatedMatrixBytes(const std::string& variant, const motion::RbmProblem& problem)
 {
     const motion::SolveVariant solveVariant = variant == "decoupled"             ? motion::SolveVariant::decoupledNonlinear

@@ -1,4 +1,4 @@
-// rbm's defaults for the direct solver (motionSolvers/PetscSupport.cpp): MUMPS orders 2D
+// rbm's defaults for the direct solver (motionSolvers/linearAlgebra/PetscSupport.cpp): MUMPS orders 2D
 // systems with AMF (ICNTL(7) = 2) and 3D ones with its own automatic choice; an option given
 // by the user wins; the option copy lives only as long as the solver.
 

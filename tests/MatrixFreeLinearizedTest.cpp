@@ -236,7 +236,9 @@ TEST(MatrixFreeLinearized, ReportsTheResidualOfTheLinearizedGradient)
             return std::sqrt(sum);
         };
         const std::vector<Vector3> zero(c.points.size());
-        const double initial = independent(RbmResult{RbmState{c.prescribed, zero}});
+        RbmResult start;
+        static_cast<RbmState&>(start) = RbmState{c.prescribed, zero};
+        const double initial = independent(start);
 
         CoupledLinearizedSolver rough(*c.problem, {LinearSolverKind::matrixFree, 1e-2});
         const RbmResult early = rough.solve(c.prescribed);

@@ -1,4 +1,4 @@
-// motionSolvers/MemoryEstimate: the size of the coupled problem counted from a mesh before
+// motionSolvers/rigidBodyMotion/MemoryEstimate: the size of the coupled problem counted from a mesh before
 // any solver exists (against neighbour counts worked out by hand on structured grids), the
 // memory model's figures (against its formulas evaluated by hand), and the machine's memory.
 

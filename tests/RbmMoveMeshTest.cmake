@@ -5,6 +5,7 @@
 # step, writeCompression on) and checks the exit status, the files written, the log line and
 # the JSON log; then -help, -version and bad command lines.
 cmake_minimum_required(VERSION 3.20)
+include(${CMAKE_CURRENT_LIST_DIR}/CopyCaseInputs.cmake)
 
 function(fail message)
   message(SEND_ERROR "${message}")
@@ -32,7 +33,7 @@ endfunction()
 set(case ${RBM_WORK_DIR}/naca4415)
 file(REMOVE_RECURSE ${RBM_WORK_DIR})
 file(MAKE_DIRECTORY ${RBM_WORK_DIR})
-file(COPY ${RBM_SOURCE_DIR}/tutorials/naca4415 DESTINATION ${RBM_WORK_DIR})
+copyCaseInputs(${RBM_SOURCE_DIR}/tutorials/naca4415 ${case})
 
 run(tutorial 0 -case ${case})
 foreach(file 1/polyMesh/points.gz 1/pointDisplacement.gz VTK/naca4415_0.vtu VTK/naca4415_1.vtu VTK/naca4415.pvd
@@ -108,8 +109,7 @@ run(petsc 0 -case ${case} -noVTK -rbm_unused_option 1)
 # Newton stopped after one iteration by a PETSc option on the command line: exit status 1,
 # PETSc's reason in the message, no time folder for the step.
 set(diverging ${RBM_WORK_DIR}/diverging/naca4415)
-file(MAKE_DIRECTORY ${RBM_WORK_DIR}/diverging)
-file(COPY ${RBM_SOURCE_DIR}/tutorials/naca4415 DESTINATION ${RBM_WORK_DIR}/diverging)
+copyCaseInputs(${RBM_SOURCE_DIR}/tutorials/naca4415 ${diverging})
 run(diverging 1 -case ${diverging} -noVTK -rbm_newton_snes_max_it 1)
 expectContains("${diverging_err}" "time 1: the motion solver did not converge (DIVERGED_MAX_IT" "stderr")
 expectContains("${diverging_err}" "Nothing was written for time 1" "stderr")

@@ -13,6 +13,7 @@
 # time equal the initial points (constant/polyMesh/points) within 1e-9 per component, and so
 # does the written total displacement.
 cmake_minimum_required(VERSION 3.20)
+include(${CMAKE_CURRENT_LIST_DIR}/CopyCaseInputs.cmake)
 
 function(fail message)
   message(SEND_ERROR "${message}")
@@ -136,10 +137,7 @@ get_filename_component(caseName "${TUTORIAL}" NAME)
 set(case ${RBM_WORK_DIR}/${caseName})
 file(REMOVE_RECURSE ${RBM_WORK_DIR})
 file(MAKE_DIRECTORY ${RBM_WORK_DIR})
-file(COPY ${RBM_SOURCE_DIR}/tutorials/${TUTORIAL} DESTINATION ${RBM_WORK_DIR})
-if(NOT EXISTS ${case}/system/controlDict)
-  message(FATAL_ERROR "no tutorial ${RBM_SOURCE_DIR}/tutorials/${TUTORIAL}")
-endif()
+copyCaseInputs(${RBM_SOURCE_DIR}/tutorials/${TUTORIAL} ${case})
 
 file(READ ${case}/system/controlDict controlDict)
 string(REPLACE "," ";" edits "${CONTROL_DICT}")
