@@ -1,6 +1,7 @@
 #include "MoveMeshRun.hpp"
 
 #include "BlockRowLayout.hpp"
+#include "CaseLock.hpp"
 #include "CompressedFile.hpp"
 #include "FoamDictionaryWriter.hpp"
 #include "InputError.hpp"
@@ -17,6 +18,7 @@
 #include "ThesisQuality.hpp"
 #include "ThreadCount.hpp"
 #include "TimeFolderWriter.hpp"
+#include "WholeFile.hpp"
 
 #include <petscversion.h>
 
@@ -112,6 +114,28 @@ bool isPetscOptionWithoutUnderscore(std::string_view argument)
     static constexpr std::string_view names[] = {"-info", "-malloc", "-nox", "-display", "-log", "-fp_trap",
                                                  "-v",    "-checkstack"};
     return std::find(std::begin(names), std::end(names), argument) != std::end(names);
+}
+
+// The sentence after an error in a step: what the step had written. `parts`: 0 nothing, 1 its
+// time folder, 2 its time folder and VTK file.
+std::string writtenByStep(const std::string& name, int parts, bool vtk)
+{
+    if (parts == 0) return "Nothing was written for this time; earlier times stay as written.";
+    if (parts == 1 && vtk) return "Time folder " + name + " was written, its VTK file was not (the .pvd lists the earlier times).";
+    return "Time " + name + " was written.";
+}
+
+// One writing run per case (io/CaseLock.hpp), taken before the case is read and held to the
+// end. False, with the message on `err`, when another run holds it; a file system without
+// locks gets a warning.
+bool lockCase(const fs::path& caseDirectory, std::optional<io::CaseLock>& lock, std::ostream& err)
+{
+    lock = io::CaseLock::acquire(caseDirectory);
+    if (lock->heldByAnother()) err << "rbmMoveMesh: " << lock->message() << "\nNothing was written.\n";
+    if (lock->state() == io::CaseLock::State::Unavailable && !lock->message().empty()) {
+        err << "rbmMoveMesh: warning: " << lock->message() << '\n';
+    }
+    return !lock->heldByAnother();
 }
 
 bool looksLikeNumber(std::string_view text)
@@ -802,6 +826,12 @@ int MoveMeshRun::run()
          options_.writesFiles ? io::removeStaleStagingFolders(caseDirectory_) : std::vector<std::string>{}) {
         err_ << "rbmMoveMesh: removed " << name << ", the unfinished time folder of an interrupted run\n";
     }
+    for (const char* kind : {".vtu", ".pvd"}) {
+        for (const std::string& name : options_.writesFiles ? io::removeStaleTemporaries(caseDirectory_ / "VTK", kind)
+                                                            : std::vector<std::string>{}) {
+            err_ << "rbmMoveMesh: removed VTK/" << name << ", the unfinished VTK file of an interrupted run\n";
+        }
+    }
     printHeader();
     io::JsonLinesWriter jsonLog = options_.writesFiles ? io::JsonLinesWriter(jsonLogFile(), true) : io::JsonLinesWriter();
 
@@ -827,6 +857,7 @@ int MoveMeshRun::run()
         const Clock::time_point stepStart = Clock::now();
         const double time = stepTime(step);
         std::string name;
+        int writtenParts = 0;   // for an error's message (writtenByStep)
         try {
             name = timeNameOf(time);
             solver_->updateBoundaryConditions(time);
@@ -884,7 +915,9 @@ int MoveMeshRun::run()
                          << ": this mesh is NOT valid for a flow solver ***\n\n";
                 }
                 writeTime(name, points);
+                writtenParts = 1;
                 if (options_.writeVtk) writeVtk(time, name, points);
+                writtenParts = 2;
                 record.written = true;
             }
             record.wallSeconds = secondsSince(stepStart);
@@ -952,13 +985,13 @@ int MoveMeshRun::run()
                 }
             }
         } catch (const InputError& error) {
-            err_ << "rbmMoveMesh: time " << (name.empty() ? general(time) : name) << ": " << error.what()
-                 << "\nNothing was written for this time; earlier times stay as written.\n";
+            err_ << "rbmMoveMesh: time " << (name.empty() ? general(time) : name) << ": " << error.what() << '\n'
+                 << writtenByStep(name, writtenParts, options_.writeVtk) << '\n';
             exitStatus = exitBadInput;
             break;
         } catch (const std::exception& error) {
-            err_ << "rbmMoveMesh: time " << (name.empty() ? general(time) : name) << ": " << error.what()
-                 << "\nNothing was written for this time; earlier times stay as written.\n";
+            err_ << "rbmMoveMesh: time " << (name.empty() ? general(time) : name) << ": " << error.what() << '\n'
+                 << writtenByStep(name, writtenParts, options_.writeVtk) << '\n';
             exitStatus = exitRunFailed;
             break;
         }
@@ -994,6 +1027,8 @@ void MoveMeshRun::printSummary(int stepsRun, double wallSeconds) const
 int runMoveMesh(const MoveMeshOptions& options, std::ostream& out, std::ostream& err,
                 std::function<void(const StepObservation&)> observer)
 {
+    std::optional<io::CaseLock> lock;   // a -parallel run's rank 0 holds it in runOnAllRanks
+    if (options.writesFiles && !options.parallel && !lockCase(options.caseDirectory, lock, err)) return exitBadInput;
     std::unique_ptr<MoveMeshRun> run;
     try {
         run = std::make_unique<MoveMeshRun>(options, out, err);
@@ -1034,6 +1069,10 @@ namespace {
 // from rank 0's (a failure of their own), so a bad case is reported once.
 int runOnAllRanks(MoveMeshOptions options, int rank, std::ostream& out, std::ostream& err)
 {
+    std::optional<io::CaseLock> lock;
+    int refused = rank == 0 && !lockCase(options.caseDirectory, lock, err);
+    MPI_Bcast(&refused, 1, MPI_INT, 0, PETSC_COMM_WORLD);
+    if (refused) return exitBadInput;
     motion::setSolverCommunicator(PETSC_COMM_WORLD);
     std::ostringstream quietOut, quietErr;
     options.writesFiles = rank == 0;

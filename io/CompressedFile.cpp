@@ -1,11 +1,11 @@
 #include "CompressedFile.hpp"
 
 #include "InputError.hpp"
+#include "WholeFile.hpp"
 
 #include <zlib.h>
 
-#include <fstream>
-#include <sstream>
+#include <algorithm>
 #include <stdexcept>
 
 namespace rbm::io {
@@ -56,6 +56,51 @@ std::string gunzip(const std::string& compressed, const fs::path& path)
     return out;
 }
 
+// Writes `contents` to `target` as a gzip stream, compressed piece by piece into a buffer that
+// goes to the file whenever it is full: the file grows as gzwrite's did, without a second copy
+// of the data in memory, and every write is reported with the OS reason by OutputFile
+// (gzwrite does not keep errno).
+// Level 1 (zlib's fastest), not OpenFOAM's default 6: any level reads back the same.
+// On the 40k-node airfoil (81 280 points) level 6 took 0.19 s for the ascii
+// pointDisplacement and 0.075 s for the binary points of every written time, half of an
+// rbmMoveMesh step; level 1 takes 0.026 s and 0.040 s, for files 10 % (ascii) and 0.7 %
+// (binary: doubles hardly compress) larger.
+void writeGzip(const fs::path& target, std::string_view contents)
+{
+    OutputFile out(target);
+    z_stream stream{};
+    // 16 + MAX_WBITS: a gzip header and trailer around the deflate stream, as gzopen writes.
+    if (deflateInit2(&stream, 1, Z_DEFLATED, 16 + MAX_WBITS, 8, Z_DEFAULT_STRATEGY) != Z_OK) {
+        throw std::runtime_error("cannot initialise zlib to write " + target.string());
+    }
+    std::string buffer(1 << 17, '\0');
+    std::size_t consumed = 0;
+    int status = Z_OK;
+    try {
+        while (status != Z_STREAM_END) {
+            // zlib counts in 32 bits: at most 1 GiB of input per call.
+            if (stream.avail_in == 0 && consumed < contents.size()) {
+                const std::size_t chunk = std::min<std::size_t>(contents.size() - consumed, 1u << 30);
+                stream.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(contents.data() + consumed));
+                stream.avail_in = static_cast<uInt>(chunk);
+                consumed += chunk;
+            }
+            stream.next_out = reinterpret_cast<Bytef*>(buffer.data());
+            stream.avail_out = static_cast<uInt>(buffer.size());
+            status = deflate(&stream, consumed == contents.size() ? Z_FINISH : Z_NO_FLUSH);
+            if (status != Z_OK && status != Z_STREAM_END && status != Z_BUF_ERROR) {
+                throw std::runtime_error("zlib failed to compress " + target.string());
+            }
+            out.write(std::string_view(buffer.data(), buffer.size() - stream.avail_out));
+        }
+    } catch (...) {
+        deflateEnd(&stream);
+        throw;
+    }
+    deflateEnd(&stream);
+    out.close();
+}
+
 // fs::exists without the error_code throws std::filesystem_error for names the system
 // refuses ("File name too long", a component that is not a folder): found by fuzzing, through
 // `#include` of such a name. Any such name is treated as absent.
@@ -91,13 +136,7 @@ std::string readFileContents(const fs::path& path)
                          std::string("cannot read ") + (fs::is_directory(status) ? "a folder" : "a device, FIFO or socket") +
                              " as a file (expected a regular file)");
     }
-    std::ifstream in(path, std::ios::binary | std::ios::ate);
-    if (!in) throw InputError(path.string(), 0, "cannot open file for reading");
-    // One read into a buffer of the file's size: no stream-buffer copy of large meshes.
-    std::string bytes(static_cast<std::size_t>(in.tellg()), '\0');
-    in.seekg(0);
-    in.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    if (!in) throw InputError(path.string(), 0, "cannot read file");
+    const std::string bytes = readWholeFile(path);
     if (looksGzipped(bytes)) return gunzip(bytes, path);
     if (path.extension() == ".gz") throw InputError(path.string(), 0, "file name ends in .gz but the content is not a gzip stream");
     return bytes;
@@ -106,30 +145,11 @@ std::string readFileContents(const fs::path& path)
 fs::path writeFileContents(const fs::path& path, std::string_view contents, bool compress)
 {
     if (!compress) {
-        std::ofstream out(path, std::ios::binary | std::ios::trunc);
-        out.write(contents.data(), static_cast<std::streamsize>(contents.size()));
-        out.close();
-        if (!out) throw std::runtime_error("cannot write file " + path.string());
+        writeWholeFile(path, contents);
         return path;
     }
     const fs::path target = withGzSuffix(path);
-    // Level 1 (zlib's fastest), not OpenFOAM's default 6: any level reads back the same.
-    // On the 40k-node airfoil (81 280 points) level 6 took 0.19 s for the ascii
-    // pointDisplacement and 0.075 s for the binary points of every written time, half of an
-    // rbmMoveMesh step; level 1 takes 0.026 s and 0.040 s, for files 10 % (ascii) and 0.7 %
-    // (binary: doubles hardly compress) larger.
-    gzFile file = gzopen(target.c_str(), "wb1");
-    if (!file) throw std::runtime_error("cannot open file for writing " + target.string());
-    std::size_t written = 0;
-    while (written < contents.size()) {
-        const unsigned chunk = static_cast<unsigned>(std::min<std::size_t>(contents.size() - written, 1u << 30));
-        if (gzwrite(file, contents.data() + written, chunk) != static_cast<int>(chunk)) {
-            gzclose(file);
-            throw std::runtime_error("cannot write gzip file " + target.string());
-        }
-        written += chunk;
-    }
-    if (gzclose(file) != Z_OK) throw std::runtime_error("cannot close gzip file " + target.string());
+    writeGzip(target, contents);
     return target;
 }
 

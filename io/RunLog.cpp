@@ -1,9 +1,17 @@
 #include "RunLog.hpp"
 
+#include "WholeFile.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
+#include <system_error>
+#include <utility>
 
 namespace rbm::io {
 
@@ -111,16 +119,60 @@ std::string stepLogJson(const StepLogRecord& record)
 
 JsonLinesWriter::JsonLinesWriter(const std::filesystem::path& file, bool truncate) : file_(file)
 {
-    if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path());
-    out_.open(file, truncate ? (std::ios::out | std::ios::trunc) : (std::ios::out | std::ios::app));
-    if (!out_) throw std::runtime_error("cannot open " + file.string() + " for writing");
+    if (file.has_parent_path()) {
+        std::error_code error;
+        std::filesystem::create_directories(file.parent_path(), error);
+        if (error) {
+            throw std::runtime_error("cannot create the folder " + file.parent_path().string() + ": " + error.message());
+        }
+    }
+    fd_ = ::open(file.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC | (truncate ? O_TRUNC : O_APPEND), 0666);
+    if (fd_ < 0) {
+        const int error = errno;
+        throw std::runtime_error("cannot create " + file.string() + ": " + systemErrorText(error));
+    }
+}
+
+JsonLinesWriter::~JsonLinesWriter()
+{
+    if (fd_ >= 0) ::close(fd_);
+}
+
+JsonLinesWriter::JsonLinesWriter(JsonLinesWriter&& other) noexcept
+    : file_(std::move(other.file_)), fd_(std::exchange(other.fd_, -1))
+{}
+
+JsonLinesWriter& JsonLinesWriter::operator=(JsonLinesWriter&& other) noexcept
+{
+    if (this != &other) {
+        if (fd_ >= 0) ::close(fd_);
+        file_ = std::move(other.file_);
+        fd_ = std::exchange(other.fd_, -1);
+    }
+    return *this;
 }
 
 void JsonLinesWriter::append(std::string_view jsonObject)
 {
-    out_ << jsonObject << '\n';
-    out_.flush();
-    if (!out_) throw std::runtime_error("cannot write to " + file_.string());
+    std::string line(jsonObject);
+    line += '\n';
+    // A full disk may take part of the line: cut the file back to its end before it, so a
+    // reader never meets half a line.
+    const off_t end = ::lseek(fd_, 0, SEEK_END);
+    std::size_t written = 0;
+    while (written < line.size()) {
+        const ssize_t result = ::write(fd_, line.data() + written, line.size() - written);
+        if (result < 0 && errno == EINTR) continue;
+        if (result < 0) {
+            const int error = errno;
+            if (end >= 0) {
+                const int cut = ::ftruncate(fd_, end);   // the write's reason is the one to report
+                static_cast<void>(cut);
+            }
+            throw std::runtime_error("cannot write " + file_.string() + ": " + systemErrorText(error));
+        }
+        written += static_cast<std::size_t>(result);
+    }
 }
 
 } // namespace rbm::io

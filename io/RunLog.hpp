@@ -22,7 +22,6 @@
 // quality evaluation (rbm_app's MoveMeshRun).
 
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <string>
 #include <string_view>
@@ -59,23 +58,29 @@ std::string stepLogJson(const StepLogRecord& record);
 std::string jsonNumber(double value);
 std::string jsonString(std::string_view text);
 
-// Appends JSON lines to a file, one object per line, flushed after every line so that an
-// interrupted run keeps every step it logged.
+// Appends JSON lines to a file, one object per line, each written with one write() call
+// (no buffer) so that an interrupted run keeps every step it logged, and a failure names
+// the OS reason.
 class JsonLinesWriter {
 public:
     JsonLinesWriter() = default;
     // Creates the folders; `truncate` starts the file anew, otherwise lines are appended.
-    // Throws std::runtime_error when the file cannot be opened.
+    // Throws std::runtime_error naming the file (or folder) and the OS reason when it cannot
+    // be opened.
     JsonLinesWriter(const std::filesystem::path& file, bool truncate);
+    ~JsonLinesWriter();
+    JsonLinesWriter(JsonLinesWriter&& other) noexcept;
+    JsonLinesWriter& operator=(JsonLinesWriter&& other) noexcept;
 
-    bool isOpen() const { return out_.is_open(); }
+    bool isOpen() const { return fd_ >= 0; }
     const std::filesystem::path& file() const { return file_; }
-    // Writes `jsonObject` and a newline. Throws std::runtime_error when writing fails.
+    // Writes `jsonObject` and a newline. Throws std::runtime_error naming the file and the OS
+    // reason when writing fails; the file then ends after the previous line.
     void append(std::string_view jsonObject);
 
 private:
     std::filesystem::path file_;
-    std::ofstream out_;
+    int fd_ = -1;
 };
 
 } // namespace rbm::io

@@ -1,6 +1,8 @@
 #include "VtkWriter.hpp"
 
 #include "CellShape.hpp"
+#include "VtkMessageCapture.hpp"
+#include "WholeFile.hpp"
 
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
@@ -14,7 +16,6 @@
 #include <vtkXMLUnstructuredGridWriter.h>
 
 #include <algorithm>
-#include <fstream>
 #include <iomanip>
 #include <regex>
 #include <sstream>
@@ -91,20 +92,22 @@ void writeVtu(const fs::path& file, const std::vector<Vector3>& points, const Vt
         grid->GetCellData()->AddArray(makeArray(field, static_cast<std::size_t>(cells.cellCount()), "cell"));
     }
 
-    // Written under a temporary name and renamed, so a reader never sees half a file.
-    const fs::path temporary = fs::path(file.string() + ".tmp");
+    // VTK writes into memory, and the bytes go to the file through replaceFileAtomically:
+    // a temporary file renamed over the old one, so a reader never sees half a file, a failure
+    // (a full disk) leaves the old file and no temporary, and the message names the file and
+    // the OS reason. VTK's own messages, if any, become one line of the error.
+    VtkMessageCapture capture;
     vtkNew<vtkXMLUnstructuredGridWriter> writer;
-    writer->SetFileName(temporary.c_str());
+    writer->WriteToOutputStringOn();
     writer->SetInputData(grid);
     writer->SetDataModeToAppended();
     writer->SetCompressorTypeToZLib();
     // zlib's fastest level, as for the .gz files (CompressedFile.cpp); VTK's default is 5.
     writer->SetCompressionLevel(1);
-    if (writer->Write() != 1) {
-        fs::remove(temporary);
-        throw std::runtime_error("VTK could not write " + file.string());
+    if (writer->Write() != 1 || capture.hasErrors()) {
+        throw std::runtime_error("VTK could not write " + file.string() + ": " + capture.summary());
     }
-    fs::rename(temporary, file);
+    replaceFileAtomically(file, writer->GetOutputString());
 }
 
 PvdCollection::PvdCollection(fs::path file) : file_(std::move(file)) {}
@@ -112,11 +115,11 @@ PvdCollection::PvdCollection(fs::path file) : file_(std::move(file)) {}
 void PvdCollection::load()
 {
     entries_.clear();
-    std::ifstream in(file_);
-    if (!in) return;
-    std::stringstream buffer;
-    buffer << in.rdbuf();
-    const std::string text = buffer.str();
+    // A missing file is an empty collection; a file that cannot be read is an error (taking
+    // it for empty would drop its entries at the next write()).
+    std::error_code error;
+    if (!fs::exists(fs::symlink_status(file_, error))) return;
+    const std::string text = readWholeFile(file_);
     const std::regex dataSet(R"re(<DataSet[^>]*timestep="([^"]*)"[^>]*file="([^"]*)")re");
     for (auto it = std::sregex_iterator(text.begin(), text.end(), dataSet); it != std::sregex_iterator(); ++it) {
         add(std::stod((*it)[1].str()), (*it)[2].str());
@@ -146,13 +149,7 @@ void PvdCollection::write() const
     }
     xml << "  </Collection>\n</VTKFile>\n";
 
-    const fs::path temporary = fs::path(file_.string() + ".tmp");
-    {
-        std::ofstream out(temporary, std::ios::trunc);
-        out << xml.str();
-        if (!out) throw std::runtime_error("cannot write " + temporary.string());
-    }
-    fs::rename(temporary, file_);
+    replaceFileAtomically(file_, xml.str());
 }
 
 } // namespace rbm::io

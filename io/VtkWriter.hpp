@@ -40,22 +40,28 @@ struct VtkField {
     std::vector<double> values;
 };
 
-// Writes an XML .vtu file (binary appended, zlib-compressed). Throws std::runtime_error
-// when VTK cannot write it. Field lengths must match the point / cell counts.
+// Writes an XML .vtu file (binary appended, zlib-compressed) atomically: VTK writes into
+// memory, the file is replaced through a temporary file and a rename (WholeFile.hpp), so an
+// existing file stays whole and no temporary is left when writing fails. Throws
+// std::runtime_error naming the file and the reason (the OS's, or VTK's messages on one line:
+// VTK prints nothing itself). Field lengths must match the point / cell counts.
 void writeVtu(const std::filesystem::path& file, const std::vector<Vector3>& points, const VtkCells& cells,
               const std::vector<VtkField>& pointFields, const std::vector<VtkField>& cellFields);
 
 // The .pvd collection of a time series. Entries are kept sorted by time; writing replaces
-// the file atomically (temporary file + rename), so ParaView never sees half a file.
+// the file atomically (temporary file + rename), so ParaView never sees half a file and a
+// failed write (a full disk) leaves the previous file.
 class PvdCollection {
 public:
     explicit PvdCollection(std::filesystem::path file);
 
     // Reads the entries of an existing .pvd so a restarted run appends to it; a missing
-    // file gives an empty collection.
+    // file gives an empty collection, one that cannot be read an rbm::InputError.
     void load();
     // Adds (or replaces) the dataset of a time; `dataset` is relative to the .pvd's folder.
     void add(double time, const std::string& dataset);
+    // Replaces the file atomically; throws std::runtime_error naming it and the OS reason
+    // (the old file is then left as it was).
     void write() const;
     std::size_t size() const { return entries_.size(); }
 

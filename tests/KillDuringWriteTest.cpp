@@ -14,10 +14,10 @@
 //  - while the folders of an earlier run are being replaced: each must then be the old one
 //    or the new one, whole, with the flow solver's file kept.
 
+#include "CompressionCase.hpp"
+#include "MoveMeshProcess.hpp"
 #include "ScratchFiles.hpp"
-#include "MeshGenerators.hpp"
 #include "PolyMeshReader.hpp"
-#include "PolyMeshWriter.hpp"
 
 #include <gtest/gtest.h>
 #include <fcntl.h>
@@ -38,12 +38,18 @@
 #include <thread>
 #include <vector>
 
-extern char** environ;
-
 namespace {
 
+using rbm::test::controlDict;
+using rbm::test::pointDisplacement;
+using rbm::test::ProcessRun;
+using rbm::test::runMoveMesh;
 using rbm::test::TempDir;
+using rbm::test::describe;
 using rbm::test::readText;
+using rbm::test::Snapshot;
+using rbm::test::snapshot;
+using rbm::test::writeCompressionCase;
 using rbm::test::writeText;
 
 namespace fs = std::filesystem;
@@ -54,70 +60,6 @@ const std::vector<std::string> writtenTimes = {"0.1", "0.2", "0.3"};
 
 
 
-
-std::string header(const std::string& className, const std::string& location, const std::string& object)
-{
-    return "FoamFile\n{\n    version 2.0;\n    format ascii;\n    class " + className + ";\n    location \"" +
-           location + "\";\n    object " + object + ";\n}\n\n";
-}
-
-std::string controlDict(bool compressed)
-{
-    return header("dictionary", "system", "controlDict") +
-           "application rbmMoveMesh;\nstartFrom startTime;\nstartTime 0;\nstopAt endTime;\nendTime 0.3;\n"
-           "deltaT 0.1;\nwriteControl timeStep;\nwriteInterval 1;\nwriteFormat ascii;\nwritePrecision 17;\n"
-           "writeCompression " +
-           std::string(compressed ? "on" : "off") + ";\ntimeFormat general;\ntimePrecision 6;\n";
-}
-
-// The left side moves right by `speed` per unit time; the right side is fixed, top and
-// bottom slide: a smooth compression, no inverted cell.
-std::string pointDisplacement(const std::string& speed)
-{
-    return header("pointVectorField", "0", "pointDisplacement") +
-           "dimensions [0 1 0 0 0 0 0];\ninternalField uniform (0 0 0);\nboundaryField\n{\n"
-           "    left { type uniformFixedValue; uniformValue table ((0 (0 0 0)) (1 (" +
-           speed +
-           " 0 0))); value uniform (0 0 0); }\n"
-           "    right { type fixedValue; value uniform (0 0 0); }\n"
-           "    \"(top|bottom)\" { type slip; }\n"
-           "    frontAndBack { type empty; }\n}\n";
-}
-
-// The case: 160 × 160 quadrilaterals on the unit square, one layer (mesh in binary, to read fast).
-void writeCase(const fs::path& caseDir)
-{
-    const PolyMesh mesh = makeExtruded2D(160, 160, Vector3{0, 0, 0}, Vector3{1, 1, 0.01});
-    io::FoamWriteOptions binary;
-    binary.binary = true;
-    io::writePolyMesh(caseDir / "constant" / "polyMesh", mesh, binary);
-    writeText(caseDir / "system" / "controlDict", controlDict(true));
-    writeText(caseDir / "constant" / "dynamicMeshDict",
-              header("dictionary", "constant", "dynamicMeshDict") +
-                  "dynamicFvMesh dynamicMotionSolverFvMesh;\nmotionSolver rigidBodyMotionSolver;\n"
-                  "rigidBodyMotionSolverCoeffs\n{\n    formulation linearized;\n    subSteps 1;\n}\n");
-    writeText(caseDir / "0" / "pointDisplacement", pointDisplacement("0.2"));
-}
-
-// Every file under `folder` with its bytes, by relative path.
-using Snapshot = std::map<std::string, std::string>;
-
-Snapshot snapshot(const fs::path& folder)
-{
-    Snapshot files;
-    for (const auto& entry : fs::recursive_directory_iterator(folder)) {
-        const std::string name = fs::relative(entry.path(), folder).string();
-        files[name] = entry.is_directory() ? std::string("<folder>") : readText(entry.path());
-    }
-    return files;
-}
-
-std::string describe(const Snapshot& files)
-{
-    std::string text;
-    for (const auto& [name, bytes] : files) text += " " + name + " (" + std::to_string(bytes.size()) + " bytes)";
-    return text;
-}
 
 // OpenFOAM's Time::findTimes takes every folder whose whole name reads as a scalar.
 bool readsAsTime(const std::string& name)
@@ -163,87 +105,6 @@ std::uintmax_t stagedFileSize(const fs::path& caseDir, const std::string& name)
     return largest;
 }
 
-struct ProcessRun {
-    bool killed = false;     // by our SIGKILL (or the shim's)
-    int exitStatus = -1;     // when it exited by itself
-    double seconds = 0.0;
-    std::string out;
-    std::string err;
-};
-
-// Runs rbmMoveMesh on the case with extra environment variables; `killWhen`, polled every
-// 0.2 ms, sends SIGKILL the first time it returns true.
-ProcessRun runMoveMesh(const fs::path& caseDir, const fs::path& logDir,
-                const std::vector<std::pair<std::string, std::string>>& extraEnvironment = {},
-                const std::function<bool(double)>& killWhen = {})
-{
-    fs::create_directories(logDir);
-    // The environment is built before fork: the child only calls async-signal-safe functions.
-    std::map<std::string, std::string> variables;
-    for (char** variable = environ; *variable; ++variable) {
-        const std::string text = *variable;
-        const std::size_t equals = text.find('=');
-        if (equals != std::string::npos) variables[text.substr(0, equals)] = text.substr(equals + 1);
-    }
-    variables["OPENBLAS_NUM_THREADS"] = "1";
-    variables["OMP_NUM_THREADS"] = "1";
-    for (const auto& [name, value] : extraEnvironment) variables[name] = value;
-    if (variables.count("LD_PRELOAD")) {
-        // In the sanitizer build the shim comes before the ASan runtime; tell ASan that is fine.
-        std::string& asan = variables["ASAN_OPTIONS"];
-        asan += (asan.empty() ? "" : ":") + std::string("verify_asan_link_order=0");
-    }
-    std::vector<std::string> storage;
-    for (const auto& [name, value] : variables) storage.push_back(name + "=" + value);
-    std::vector<char*> environment;
-    for (std::string& entry : storage) environment.push_back(entry.data());
-    environment.push_back(nullptr);
-    const std::string program = RBM_MOVE_MESH;
-    const std::string caseArgument = caseDir.string();
-    std::vector<char*> arguments = {const_cast<char*>(program.c_str()), const_cast<char*>("-case"),
-                                    const_cast<char*>(caseArgument.c_str()), nullptr};
-    const std::string outFile = (logDir / "stdout").string();
-    const std::string errFile = (logDir / "stderr").string();
-
-    ProcessRun run;
-    const Clock::time_point start = Clock::now();
-    const pid_t pid = ::fork();
-    if (pid == 0) {
-        const int out = ::open(outFile.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        const int err = ::open(errFile.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        if (out < 0 || err < 0) ::_exit(126);
-        ::dup2(out, 1);
-        ::dup2(err, 2);
-        ::execve(program.c_str(), arguments.data(), environment.data());
-        ::_exit(127);
-    }
-    EXPECT_GT(pid, 0) << "fork failed";
-    int status = 0;
-    while (true) {
-        const pid_t done = ::waitpid(pid, &status, WNOHANG);
-        if (done == pid) break;
-        const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
-        if (killWhen && killWhen(elapsed)) {
-            ::kill(pid, SIGKILL);
-            ::waitpid(pid, &status, 0);
-            break;
-        }
-        if (elapsed > 600) {   // a hang: stop it, the test fails below
-            ::kill(pid, SIGKILL);
-            ::waitpid(pid, &status, 0);
-            ADD_FAILURE() << "rbmMoveMesh ran for more than 600 s";
-            break;
-        }
-        std::this_thread::sleep_for(std::chrono::microseconds(200));
-    }
-    run.seconds = std::chrono::duration<double>(Clock::now() - start).count();
-    run.killed = WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL;
-    if (WIFEXITED(status)) run.exitStatus = WEXITSTATUS(status);
-    run.out = readText(logDir / "stdout");
-    run.err = readText(logDir / "stderr");
-    return run;
-}
-
 void copyCase(const fs::path& from, const fs::path& to)
 {
     fs::remove_all(to);
@@ -273,7 +134,7 @@ Reference makeReference(const fs::path& root)
 {
     Reference reference;
     reference.pristine = root / "pristine";
-    writeCase(reference.pristine);
+    writeCompressionCase(reference.pristine, 160, "0.3");
     reference.inputs = inputsOf(reference.pristine);
     const fs::path caseDir = root / "uninterrupted";
     copyCase(reference.pristine, caseDir);
@@ -381,7 +242,7 @@ TEST_F(KillDuringWrite, WhileAFileIsHalfWrittenNothingShowsAndARerunCompletesThe
         const fs::path caseDir = dir.path() / "case";
         copyCase(reference.pristine, caseDir);
         std::uintmax_t sizeAtKill = 0;
-        const ProcessRun run = runMoveMesh(caseDir, dir.path() / "log", {}, [&](double) {
+        const ProcessRun run = runMoveMesh(caseDir, dir.path() / "log", {}, [&](double, pid_t) {
             sizeAtKill = stagedFileSize(caseDir, file);
             return sizeAtKill > 0;
         });
@@ -415,7 +276,7 @@ TEST_F(KillDuringWrite, AtAnyMomentOfTheRunEveryTimeFolderIsWholeOrAbsent)
         const fs::path caseDir = dir.path() / "case";
         copyCase(reference.pristine, caseDir);
         bool stagingAtKill = false;
-        const ProcessRun run = runMoveMesh(caseDir, dir.path() / "log", {}, [&](double elapsed) {
+        const ProcessRun run = runMoveMesh(caseDir, dir.path() / "log", {}, [&](double elapsed, pid_t) {
             if (elapsed < fraction * reference.seconds) return false;
             stagingAtKill = hasStagingFolder(caseDir);
             return true;

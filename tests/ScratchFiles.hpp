@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <string>
 
 namespace rbm::test {
@@ -44,6 +45,28 @@ inline std::string readText(const std::filesystem::path& file)
 {
     std::ifstream in(file, std::ios::binary);
     return {std::istreambuf_iterator<char>(in), {}};
+}
+
+// Every file and folder under `folder` with its bytes ("<folder>" for folders), by relative path:
+// two snapshots are equal when the tree is byte for byte the same.
+using Snapshot = std::map<std::string, std::string>;
+
+inline Snapshot snapshot(const std::filesystem::path& folder)
+{
+    Snapshot files;
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(folder)) {
+        const std::string name = std::filesystem::relative(entry.path(), folder).string();
+        files[name] = entry.is_directory() ? std::string("<folder>") : readText(entry.path());
+    }
+    return files;
+}
+
+// " name (N bytes)" for every entry, for failure messages.
+inline std::string describe(const Snapshot& files)
+{
+    std::string text;
+    for (const auto& [name, bytes] : files) text += " " + name + " (" + std::to_string(bytes.size()) + " bytes)";
+    return text;
 }
 
 } // namespace rbm::test
