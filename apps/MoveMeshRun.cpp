@@ -120,9 +120,9 @@ bool isPetscOptionWithoutUnderscore(std::string_view argument)
 // time folder, 2 its time folder and VTK file.
 std::string writtenByStep(const std::string& name, int parts, bool vtk)
 {
-    if (parts == 0) return "Nothing was written for this time; earlier times stay as written.";
-    if (parts == 1 && vtk) return "Time folder " + name + " was written, its VTK file was not (the .pvd lists the earlier times).";
-    return "Time " + name + " was written.";
+    return parts == 0          ? "Nothing was written for this time; earlier times stay as written."
+           : parts == 1 && vtk ? "Time folder " + name + " was written, its VTK file was not (the .pvd lists the earlier times)."
+                               : "Time " + name + " was written.";
 }
 
 // One writing run per case (io/CaseLock.hpp), taken before the case is read and held to the
@@ -258,7 +258,7 @@ std::string usageText()
          << "\n"
             "                             The start time's internalField warm-starts a restart.\n"
             "\n"
-            "Files written (each time folder atomically):\n"
+            "Files written (each time folder and VTK file atomically; one run per case at a time):\n"
             "  <time>/polyMesh/points     at write times (writeFormat, writePrecision, writeCompression)\n"
             "  <time>/pointDisplacement   at write times (ascii)\n"
             "  VTK/<case>_<time>.vtu      at write times and for the initial mesh; VTK/<case>.pvd\n"
@@ -273,8 +273,9 @@ std::string usageText()
             "environment); a solve that does not fit stops the run with both figures (exit status 1).\n"
             "\n"
             "Exit status: 0 success; 1 a step with inverted cells, without convergence or with NaN\n"
-            "values (nothing written for it), not enough memory, or a failure during the run; 2 bad\n"
-            "command line or case (nothing written).\n"
+            "values (nothing written for it), not enough memory, or a failure during the run (a\n"
+            "file that cannot be written: the message gives the OS reason); 2 bad command line or\n"
+            "case, or another rbmMoveMesh is moving the case (nothing written).\n"
             "See docs/rbmMoveMesh.md.\n";
     return text.str();
 }
@@ -826,11 +827,9 @@ int MoveMeshRun::run()
          options_.writesFiles ? io::removeStaleStagingFolders(caseDirectory_) : std::vector<std::string>{}) {
         err_ << "rbmMoveMesh: removed " << name << ", the unfinished time folder of an interrupted run\n";
     }
-    for (const char* kind : {".vtu", ".pvd"}) {
-        for (const std::string& name : options_.writesFiles ? io::removeStaleTemporaries(caseDirectory_ / "VTK", kind)
-                                                            : std::vector<std::string>{}) {
-            err_ << "rbmMoveMesh: removed VTK/" << name << ", the unfinished VTK file of an interrupted run\n";
-        }
+    for (const std::string& name : options_.writesFiles ? io::removeStaleTemporaries(caseDirectory_ / "VTK", {".vtu", ".pvd"})
+                                                        : std::vector<std::string>{}) {
+        err_ << "rbmMoveMesh: removed VTK/" << name << ", the unfinished VTK file of an interrupted run\n";
     }
     printHeader();
     io::JsonLinesWriter jsonLog = options_.writesFiles ? io::JsonLinesWriter(jsonLogFile(), true) : io::JsonLinesWriter();

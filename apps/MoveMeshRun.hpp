@@ -3,6 +3,8 @@
 // rbm's motion solver (DESIGN.md §3).
 //
 // The run (documented for users in docs/rbmMoveMesh.md):
+//  0. A run that writes takes the case lock (io/CaseLock.hpp) before reading anything: a
+//     second rbmMoveMesh on the case meanwhile is refused (exit status 2).
 //  1. Setup reads and checks every input before anything is written: system/controlDict,
 //     constant/dynamicMeshDict, constant/polyMesh, the point displacement field with the
 //     boundary conditions, and for a restart the warm start. Bad input is an rbm::InputError
@@ -59,7 +61,7 @@ namespace rbm::app {
 // Exit statuses of rbmMoveMesh.
 inline constexpr int exitSuccess = 0;
 inline constexpr int exitRunFailed = 1;   // inverted cells, no convergence, NaN, not enough memory, a failure during the run
-inline constexpr int exitBadInput = 2;    // bad command line or case (nothing written)
+inline constexpr int exitBadInput = 2;    // bad command line or case, or the case locked by another run (nothing written)
 
 struct MoveMeshOptions {
     std::filesystem::path caseDirectory = ".";
@@ -209,7 +211,9 @@ private:
 };
 
 // Setup and run with every exception turned into an exit status and a message on `err`
-// (InputError and usage problems: 2; failures during the run: 1). Never throws.
+// (InputError and usage problems: 2; failures during the run: 1). Never throws. A run
+// that writes (options.writesFiles, not -parallel) first locks the case (io/CaseLock.hpp)
+// and returns 2 when another run holds it; a -parallel run's rank 0 locks in moveMeshMain.
 int runMoveMesh(const MoveMeshOptions& options, std::ostream& out, std::ostream& err,
                 std::function<void(const StepObservation&)> observer = {});
 

@@ -117,16 +117,20 @@ void replaceFileAtomically(const fs::path& file, std::string_view bytes)
     }
 }
 
-std::vector<std::string> removeStaleTemporaries(const fs::path& folder, std::string_view suffix)
+std::vector<std::string> removeStaleTemporaries(const fs::path& folder, const std::vector<std::string>& suffixes)
 {
-    const std::string ending = std::string(suffix) + ".tmp";
+    const auto isTemporary = [&](const std::string& name) {
+        return std::any_of(suffixes.begin(), suffixes.end(), [&](const std::string& suffix) {
+            const std::string ending = suffix + ".tmp";
+            return name.size() > ending.size() && name.compare(name.size() - ending.size(), ending.size(), ending) == 0;
+        });
+    };
     std::vector<std::string> removed;
     std::error_code error;
     for (const fs::directory_entry& entry : fs::directory_iterator(folder, error)) {
         const std::string name = entry.path().filename().string();
-        if (name.size() <= ending.size() || name.compare(name.size() - ending.size(), ending.size(), ending) != 0) continue;
         std::error_code ignored;
-        if (entry.is_regular_file(ignored) && fs::remove(entry.path(), ignored)) removed.push_back(name);
+        if (isTemporary(name) && entry.is_regular_file(ignored) && fs::remove(entry.path(), ignored)) removed.push_back(name);
     }
     return removed;
 }

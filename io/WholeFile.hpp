@@ -57,9 +57,11 @@ void replaceFileAtomically(const std::filesystem::path& file, std::string_view b
 // killed run is overwritten by the next write or removed by removeStaleTemporaries.
 std::filesystem::path temporaryNameOf(const std::filesystem::path& file);
 
-// Removes the files of `folder` whose names end in "<suffix>.tmp" (leftovers of
-// replaceFileAtomically in a killed run) and returns their names; a missing folder has none.
-std::vector<std::string> removeStaleTemporaries(const std::filesystem::path& folder, std::string_view suffix);
+// Removes the files of `folder` whose names end in "<suffix>.tmp" for one of `suffixes`
+// (leftovers of replaceFileAtomically in a killed run) and returns their names; a missing
+// folder has none.
+std::vector<std::string> removeStaleTemporaries(const std::filesystem::path& folder,
+                                                const std::vector<std::string>& suffixes);
 
 // The whole content of a regular file. Throws rbm::InputError naming the file and the
 // reason: "cannot open file for reading (Permission denied)", "cannot read file (...)".

@@ -234,4 +234,24 @@ TEST_F(WriteFailure, UnreadableMeshFileGivesPermissionDeniedAndExitStatus2)
     EXPECT_TRUE(snapshot(caseDir) == before) << "the case changed";
 }
 
+TEST_F(WriteFailure, TemporaryVtkFilesOfAKilledRunAreRemovedByTheNextRun)
+{
+    TempDir dir("vtkLeftovers");
+    const fs::path caseDir = dir.path() / "case";
+    fs::copy(pristine(), caseDir, fs::copy_options::recursive);
+    writeText(caseDir / "VTK" / "case_0.3.vtu.tmp", "half a file");
+    writeText(caseDir / "VTK" / "case.pvd.tmp", "<?xml");
+    writeText(caseDir / "VTK" / "notes.tmp", "not rbm's: stays");
+    const ProcessRun run = runMoveMesh(caseDir, dir.path() / "log");
+    EXPECT_EQ(run.exitStatus, 0) << run.out << run.err;
+    EXPECT_TRUE(contains(run.err, "rbmMoveMesh: removed VTK/case_0.3.vtu.tmp, the unfinished VTK file of an interrupted run\n"))
+        << run.err;
+    EXPECT_TRUE(contains(run.err, "rbmMoveMesh: removed VTK/case.pvd.tmp, the unfinished VTK file of an interrupted run\n"))
+        << run.err;
+    EXPECT_FALSE(fs::exists(caseDir / "VTK" / "case_0.3.vtu.tmp"));
+    EXPECT_FALSE(fs::exists(caseDir / "VTK" / "case.pvd.tmp"));
+    EXPECT_TRUE(fs::exists(caseDir / "VTK" / "notes.tmp"));
+    EXPECT_EQ(readText(caseDir / "VTK" / "case_0.3.vtu"), reference_->files.at("VTK/case_0.3.vtu"));
+}
+
 } // namespace
