@@ -1,14 +1,16 @@
 // Tests of the matrix-free coupled linearized solve (MatrixFreeLinearizedSystem,
-// ReducedLinearizedOperator): the reduced gradient against finite differences and against the
+// ReducedLinearizedOperator) and of Newton on the reduced nonlinear energy (ReducedNewtonSolver): the reduced gradient against finite differences and against the
 // full linearized energy, and the solution against the assembled, directly factorised
 // system, in 2D and 3D, with free, prescribed, sliding and mirror nodes.
 
 #include "CoupledLinearizedSolver.hpp"
+#include "CoupledNewtonSolver.hpp"
 #include "MatrixFreeLinearizedSystem.hpp"
 #include "PetscTestEnvironment.hpp"
 #include "RbmEnergy.hpp"
 #include "RbmProblem.hpp"
 #include "ReducedLinearizedOperator.hpp"
+#include "ReducedNewtonSolver.hpp"
 #include "ThreadCount.hpp"
 
 #include <gtest/gtest.h>
@@ -312,6 +314,146 @@ TEST(MatrixFreeLinearized, IsTheAutomaticChoiceIn3DOnly)
     EXPECT_FALSE(matrixFreeChosen(LinearSolverKind::direct, 3, 600));
     EXPECT_FALSE(matrixFreeChosen(LinearSolverKind::iterative, 3, 100 * directSolverRowLimit));
     EXPECT_TRUE(matrixFreeChosen(LinearSolverKind::matrixFree, 2, 30));
+}
+
+} // namespace
+} // namespace rbm::motion
+
+namespace rbm::motion {
+namespace {
+
+// A large deformation of gridCase's top: turned 40° (2D: sheared by 0.3 and turned 25°), so
+// that the exact rotations matter.
+std::vector<Vector3> largeTopMotion(const GridCase& c)
+{
+    std::vector<Vector3> prescribed = c.prescribed;
+    for (int node = 0; node < c.problem->nodeCount(); ++node) {
+        const Vector3& p = c.points[node];
+        const double height = c.dimension == 3 ? p.z : p.y;
+        if (height != 1.0) continue;
+        const double angle = (c.dimension == 3 ? 40.0 : 25.0) * 3.14159265358979 / 180.0;
+        const double dx = p.x - 0.5, dy = c.dimension == 3 ? p.y - 0.5 : p.y - 1.0;
+        prescribed[node] = {std::cos(angle) * dx - std::sin(angle) * dy - dx + (c.dimension == 2 ? 0.3 : 0.05),
+                            std::sin(angle) * dx + std::cos(angle) * dy - dy, c.dimension == 3 ? 0.03 : 0.0};
+    }
+    return prescribed;
+}
+
+TEST(ReducedNewton, GradientAndHessianMatchFiniteDifferencesOfTheReducedEnergy)
+{
+    for (const auto& [dimension, mirror] : {std::pair{2, false}, {3, false}, {3, true}}) {
+        const GridCase c = gridCase(dimension, 4, mirror, 5);
+        const RbmProblem& problem = *c.problem;
+        const std::vector<Vector3> prescribed = largeTopMotion(c);
+        ReducedNewtonSolver solver(problem);
+        std::mt19937 random(9);
+        std::uniform_real_distribution<double> value(-0.05, 0.05);
+        std::vector<Vector3> displacement = prescribed;
+        for (int node : problem.unknownNodes()) {
+            displacement[node] = 0.5 * prescribed[node] +
+                                 Vector3{value(random), value(random), dimension == 3 ? value(random) : 0.0};
+            if (problem.kind(node) == NodeKind::sliding) {  // onto its plane: u·n = c
+                const Vector3& n = problem.slidingNormal(node);
+                displacement[node] -= (dot(displacement[node], n) - dot(prescribed[node], n)) * n;
+            }
+        }
+        const std::vector<double> gradient = solver.reducedGradient(displacement);
+        // The slope of Ẽ along a random (projected) direction.
+        std::vector<double> direction(gradient.size());
+        for (double& d : direction) d = value(random);
+        problem.projectSliding(direction, dimension);
+        auto moved = [&](double step) {
+            std::vector<Vector3> u = displacement;
+            for (int a = 0; a < problem.unknownNodeCount(); ++a)
+                for (int q = 0; q < dimension; ++q) u[problem.unknownNodes()[a]][q] += step * direction[a * dimension + q];
+            return u;
+        };
+        const double h = 1e-5;
+        const double slope = (solver.reducedEnergy(moved(h)) - solver.reducedEnergy(moved(-h))) / (2.0 * h);
+        double expectedSlope = 0.0;
+        for (std::size_t k = 0; k < gradient.size(); ++k) expectedSlope += gradient[k] * direction[k];
+        EXPECT_GT(std::abs(expectedSlope), 1e-3) << dimension;
+        EXPECT_NEAR(slope, expectedSlope, 1e-6 * std::abs(expectedSlope)) << dimension << "D mirror " << mirror;
+
+        // S v against the difference of gradients (∇²Ẽ = the Schur complement, file comment).
+        const std::vector<double> hessianTimes = solver.reducedHessianTimes(displacement, direction);
+        const std::vector<double> plus = solver.reducedGradient(moved(h));
+        const std::vector<double> minus = solver.reducedGradient(moved(-h));
+        double largest = 0.0, largestError = 0.0;
+        for (std::size_t k = 0; k < gradient.size(); ++k) {
+            largest = std::max(largest, std::abs(hessianTimes[k]));
+            largestError = std::max(largestError, std::abs((plus[k] - minus[k]) / (2.0 * h) - hessianTimes[k]));
+        }
+        EXPECT_GT(largest, 1e-2) << dimension;
+        EXPECT_LT(largestError, 1e-5 * largest) << dimension << "D mirror " << mirror;
+    }
+}
+
+TEST(ReducedNewton, ReachesNewtonsMinimum)
+{
+    for (const auto& [dimension, mirror] : {std::pair{2, false}, {3, false}, {3, true}}) {
+        const GridCase c = gridCase(dimension, dimension == 2 ? 12 : 5, mirror, 13);
+        const std::vector<Vector3> prescribed = largeTopMotion(c);
+        CoupledNewtonSolver newton(*c.problem);
+        ReducedNewtonSolver reduced(*c.problem);
+        const RbmResult expected = newton.solve(prescribed);
+        const RbmResult result = reduced.solve(prescribed);
+        ASSERT_TRUE(expected.converged) << expected.reason;
+        ASSERT_TRUE(result.converged) << result.reason;
+        EXPECT_GT(expected.energy, 1e-3);
+        EXPECT_NEAR(result.energy, expected.energy, 1e-10 * expected.energy) << dimension << "D mirror " << mirror;
+        EXPECT_LT(largestDifference(result.displacement, expected.displacement), 1e-8) << dimension << "D mirror " << mirror;
+        EXPECT_LT(result.residualNorm, 1e-6) << result.reason;
+        for (int node = 0; node < c.problem->nodeCount(); ++node) {
+            if (c.problem->kind(node) == NodeKind::sliding && c.points[node].x == 0.0) {
+                EXPECT_NEAR(result.displacement[node].x, 0.01, 1e-15);
+            }
+        }
+
+        // A time series of warm starts (the secant predictor from the third solve on) ends where a
+        // cold solve of the last boundary does.
+        ReducedNewtonSolver series(*c.problem);
+        RbmResult state;
+        for (int step = 1; step <= 4; ++step) {
+            std::vector<Vector3> boundary = prescribed;
+            for (Vector3& v : boundary) v = (step / 4.0) * v;
+            const RbmResult next = series.solve(boundary, step == 1 ? nullptr : &state);
+            ASSERT_TRUE(next.converged) << next.reason;
+            state = next;
+        }
+        EXPECT_NEAR(state.energy, expected.energy, 1e-10 * expected.energy);
+        EXPECT_LT(largestDifference(state.displacement, expected.displacement), 1e-8);
+    }
+}
+
+TEST(ReducedNewton, MovesTheWholeMeshRigidlyWhenTheBoundaryMovesRigidly)
+{
+    // Every boundary node turned 120° (2D) / 100° about a skew axis (3D) and shifted: the exact
+    // minimum is the rigid motion itself, E = 0.
+    for (int dimension : {2, 3}) {
+        GridCase c = gridCase(dimension, dimension == 2 ? 10 : 4, false, 3);
+        std::vector<NodeConstraint> constraints(c.points.size());
+        for (int node = 0; node < static_cast<int>(c.points.size()); ++node) {
+            const Vector3& p = c.points[node];
+            bool boundary = p.x == 0.0 || p.x == 1.0 || p.y == 0.0 || p.y == 1.0;
+            if (dimension == 3) boundary = boundary || p.z == 0.0 || p.z == 1.0;
+            if (boundary) constraints[node].kind = NodeKind::prescribed;
+        }
+        const RbmProblem problem(dimension, c.points, c.problem->graph(), constraints, EdgeWeighting::inverseDistanceSquared);
+        const Matrix3 rotation = dimension == 2 ? planarRotation(120.0 * 3.14159265358979 / 180.0)
+                                                : rotationFromVector(Vector3{0.6, -0.9, 1.2} * (100.0 * 3.14159265358979 / 180.0 / 1.6155));
+        const Vector3 shift{0.3, -0.2, dimension == 3 ? 0.1 : 0.0};
+        std::vector<Vector3> rigid(c.points.size());
+        for (std::size_t node = 0; node < rigid.size(); ++node) {
+            const Vector3 centred = c.points[node] - Vector3{0.5, 0.5, dimension == 3 ? 0.5 : 0.0};
+            rigid[node] = rotation * centred - centred + shift;
+        }
+        ReducedNewtonSolver solver(problem);
+        const RbmResult result = solver.solve(rigid);
+        ASSERT_TRUE(result.converged) << result.reason;
+        EXPECT_LT(largestDifference(result.displacement, rigid), 1e-10) << dimension;
+        EXPECT_LT(result.energy, 1e-20) << dimension;
+    }
 }
 
 } // namespace

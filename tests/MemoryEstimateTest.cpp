@@ -118,8 +118,10 @@ TEST(MemoryEstimate, ModelFiguresFollowTheirFormulas)
 TEST(MemoryEstimate, VariantAndSystemsFollowTheOptions)
 {
     RigidBodyMotionOptions options;
-    EXPECT_EQ(solveVariantOf(options), SolveVariant::coupledNewton);
+    EXPECT_EQ(solveVariantOf(options), SolveVariant::coupledReducedNewton);
     EXPECT_EQ(linearSystemsAtOnce(options), 1);
+    options.algorithm = RbmAlgorithm::newton;
+    EXPECT_EQ(solveVariantOf(options), SolveVariant::coupledNewton);
     options.algorithm = RbmAlgorithm::localGlobal;
     EXPECT_EQ(solveVariantOf(options), SolveVariant::coupledLocalGlobal);
     options.formulation = RbmFormulation::linearized;

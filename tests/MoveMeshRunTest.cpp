@@ -1062,10 +1062,14 @@ INSTANTIATE_TEST_SUITE_P(
     Cases, MoveMeshRunFailingSolve,
     ::testing::Values(
         // SNES stopped after one Newton step.
-        FailingSolve{"NewtonIterationLimit", "petscOptions \"-rbm_newton_snes_max_it 1\";", turningBoundary,
+        FailingSolve{"NewtonIterationLimit", "algorithm newton; petscOptions \"-rbm_newton_snes_max_it 1\";",
+                     turningBoundary, {"DIVERGED_MAX_IT", "the motion solver did not converge"}},
+        // The default (reduced Newton) stopped after one step.
+        FailingSolve{"ReducedNewtonIterationLimit", "maxIterations 1;", turningBoundary,
                      {"DIVERGED_MAX_IT", "the motion solver did not converge"}},
         // Newton's linear solves fail: CG without preconditioner, 2 iterations.
         FailingSolve{"NewtonLinearSolveFails",
+                     "algorithm newton; "
                      "petscOptions \"-rbm_newton_ksp_type cg -rbm_newton_pc_type none -rbm_newton_ksp_max_it 2\";",
                      turningBoundary, {"DIVERGED_LINEAR_SOLVE", "the motion solver did not converge"}},
         // The linearized system with CG, no preconditioner, 2 iterations.
@@ -1075,13 +1079,20 @@ INSTANTIATE_TEST_SUITE_P(
                      turningBoundary, {"DIVERGED_ITS", "did not converge"}},
         // A boundary displacement of 1e300: the energy overflows, SNES reports the NaN/Inf
         // norm; not written even with -writeInvalid.
-        FailingSolve{"NewtonOverflow", "", R"foam(
+        FailingSolve{"NewtonOverflow", "algorithm newton;", R"foam(
     left            { type fixedValue; value uniform (1e300 0 0); }
     right           { type fixedValue; value uniform (0 0 0); }
     "(top|bottom)"  { type zeroGradient; }
     frontAndBack    { type empty; }
 )foam",
                      {"DIVERGED_FNORM_NAN", "a residual of inf", "not even with -writeInvalid"}, true},
+        FailingSolve{"ReducedNewtonOverflow", "", R"foam(
+    left            { type fixedValue; value uniform (1e300 0 0); }
+    right           { type fixedValue; value uniform (0 0 0); }
+    "(top|bottom)"  { type zeroGradient; }
+    frontAndBack    { type empty; }
+)foam",
+                     {"DIVERGED_FNORM_NAN", "NaN or infinite displacement", "not even with -writeInvalid"}, true},
         // The linearized solve of the same: a direct factorisation "converges" (CONVERGED_ITS)
         // to an infinite residual.
         FailingSolve{"LinearizedOverflow", "formulation linearized; subSteps 1;", R"foam(
@@ -1202,11 +1213,11 @@ TEST(MoveMeshRun, ALinearized2DSolveWhoseFactorisationDoesNotFitRunsMatrixFree)
 
 TEST(MoveMeshRun, ASolveLargerThanTheMemoryStopsBeforeAssemblingAndSaysHowMuchItNeeds)
 {
-    // The 8 × 8 square, default solver (coupled Newton, direct in 2D): 81 planar nodes, the
-    // 18 on the left and right sides prescribed, 63 unknown, 189 rows. Estimate
-    // (MemoryEstimate.hpp): 2.3 × 189 × 130 × log2(189) = 427 350 bytes = 417.3 KiB.
+    // The 8 × 8 square, coupled Newton (direct in 2D): 81 planar nodes, the 18 on the left and
+    // right sides prescribed, 63 unknown, 189 rows. Estimate (MemoryEstimate.hpp):
+    // 2.3 × 189 × 130 × log2(189) = 427 350 bytes = 417.3 KiB.
     TempDir dir("memory");
-    writeSquareCase(dir.path(), Control{}, pitchingBoundary);
+    writeSquareCase(dir.path(), Control{}, pitchingBoundary, "algorithm newton;");
     const auto before = listing(dir.path());
     {
         const ScopedEnvironment limit("RBM_AVAILABLE_MEMORY_MB", "0.25");

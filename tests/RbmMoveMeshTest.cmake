@@ -110,7 +110,7 @@ run(petsc 0 -case ${case} -noVTK -rbm_unused_option 1)
 # PETSc's reason in the message, no time folder for the step.
 set(diverging ${RBM_WORK_DIR}/diverging/naca4415)
 copyCaseInputs(${RBM_SOURCE_DIR}/tutorials/naca4415 ${diverging})
-run(diverging 1 -case ${diverging} -noVTK -rbm_newton_snes_max_it 1)
+run(diverging 1 -case ${diverging} -noVTK -rbm_reduced_max_it 1)
 expectContains("${diverging_err}" "time 1: the motion solver did not converge (DIVERGED_MAX_IT" "stderr")
 expectContains("${diverging_err}" "Nothing was written for time 1" "stderr")
 if(EXISTS ${diverging}/1)

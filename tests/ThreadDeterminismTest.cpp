@@ -16,6 +16,7 @@
 #include "PseudoTwoDExtraction.hpp"
 #include "QualityReport.hpp"
 #include "RbmEnergy.hpp"
+#include "ReducedNewtonSolver.hpp"
 #include "RbmProblem.hpp"
 #include "ThreadCount.hpp"
 
@@ -477,6 +478,23 @@ TEST(ThreadDeterminism, NewtonSolvesAreTheSameForOneTwoAndThreeThreads)
             return result;
         },
         resultNumbers, "Newton on the twisted box");
+}
+
+TEST(ThreadDeterminism, ReducedNewtonSolvesAreTheSameForOneTwoAndThreeThreads)
+{
+    for (int which = 0; which < 2; ++which) {
+        const Case c = which == 0 ? twistedBoxCase() : airfoilCase();
+        ASSERT_TRUE(worthThreading(c.problem->graph().neighbours.size()));
+        expectSameForEveryThreadCount<RbmResult>(
+            [&] {
+                ReducedNewtonSolver solver(*c.problem);
+                const RbmResult result = solver.solve(c.prescribed);
+                EXPECT_TRUE(result.converged) << result.reason;
+                EXPECT_GT(result.energy, 1e-6);
+                return result;
+            },
+            resultNumbers, "reduced Newton");
+    }
 }
 
 TEST(ThreadDeterminism, DecoupledLinearizedSolvesAreTheSameForOneTwoAndThreeThreads)

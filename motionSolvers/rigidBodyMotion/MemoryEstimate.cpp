@@ -120,7 +120,8 @@ MemoryEstimate estimateSolveMemory(SolveVariant variant, const SolveSize& size, 
                                    int systems)
 {
     const bool scalarLaplacian =
-        variant == SolveVariant::decoupledNonlinear || variant == SolveVariant::coupledLocalGlobal;
+        variant == SolveVariant::decoupledNonlinear || variant == SolveVariant::coupledLocalGlobal ||
+        variant == SolveVariant::coupledReducedNewton;
     const int blockSize = size.dimension == 2 ? 3 : 6;
     MemoryEstimate estimate;
     estimate.rows = scalarLaplacian ? size.unknownNodes : size.unknownNodes * blockSize;
@@ -198,8 +199,12 @@ SolveVariant solveVariantOf(const RigidBodyMotionOptions& options)
     if (options.coupling == RbmCoupling::decoupled)
         return linearized ? SolveVariant::decoupledLinearized : SolveVariant::decoupledNonlinear;
     if (linearized) return SolveVariant::coupledLinearized;
-    return options.algorithm == RbmAlgorithm::localGlobal ? SolveVariant::coupledLocalGlobal
-                                                          : SolveVariant::coupledNewton;
+    switch (options.algorithm) {
+    case RbmAlgorithm::localGlobal: return SolveVariant::coupledLocalGlobal;
+    case RbmAlgorithm::reducedNewton: return SolveVariant::coupledReducedNewton;
+    case RbmAlgorithm::newton: break;
+    }
+    return SolveVariant::coupledNewton;
 }
 
 int linearSystemsAtOnce(const RigidBodyMotionOptions& options)

@@ -45,6 +45,7 @@ enum class SolveVariant {
     coupledLinearized,    // CoupledLinearizedSolver
     coupledNewton,        // CoupledNewtonSolver
     coupledLocalGlobal,   // LocalGlobalSolver (then Newton where it stalls)
+    coupledReducedNewton, // ReducedNewtonSolver: the scalar Laplacian only
 };
 
 // The size of the coupled problem.

@@ -156,24 +156,29 @@ void ReducedLinearizedOperator::apply(std::span<const double> xValues, std::span
     gradient(workDisplacement_, y);
 }
 
-std::vector<double> ReducedLinearizedOperator::displacementLaplacianValues() const
+std::vector<double> coupledDisplacementLaplacian(const RbmProblem& problem)
 {
-    const CellNeighbourGraph& graph = problem_.graph();
-    const BlockPattern& pattern = problem_.blockPattern();
-    const std::vector<double>& weights = problem_.edgeWeights();
-    const std::vector<int>& edgeBlock = problem_.edgeBlock();
+    const CellNeighbourGraph& graph = problem.graph();
+    const BlockPattern& pattern = problem.blockPattern();
+    const std::vector<double>& weights = problem.edgeWeights();
+    const std::vector<int>& edgeBlock = problem.edgeBlock();
     std::vector<double> values(pattern.blockCount(), 0.0);
-    for (int a = 0; a < problem_.unknownNodeCount(); ++a) {
-        const int k = problem_.unknownNodes()[a];
+    for (int a = 0; a < problem.unknownNodeCount(); ++a) {
+        const int k = problem.unknownNodes()[a];
         double diagonal = 0.0;
         for (int e = graph.offsets[k]; e < graph.offsets[k + 1]; ++e) {
-            const bool unknown = problem_.isUnknown(graph.neighbours[e]);
+            const bool unknown = problem.isUnknown(graph.neighbours[e]);
             diagonal += weights[e] * (unknown ? 2.0 : 1.0);
             if (unknown) values[edgeBlock[e]] = -2.0 * weights[e];
         }
         values[pattern.diagonal[a]] = diagonal;
     }
     return values;
+}
+
+std::vector<double> ReducedLinearizedOperator::displacementLaplacianValues() const
+{
+    return coupledDisplacementLaplacian(problem_);
 }
 
 } // namespace rbm::motion

@@ -41,6 +41,11 @@
 
 namespace rbm::motion {
 
+// H_uu of the coupled energy as a scalar matrix over unknown nodes in blockPattern() order:
+// K_kk = Σ_j w_kj (1 + [j unknown]), K_kj = −2 w_kj for unknown j. The same for every
+// component and for the exact and the linearized energy (E is quadratic in u).
+std::vector<double> coupledDisplacementLaplacian(const RbmProblem& problem);
+
 class ReducedLinearizedOperator {
 public:
     // Keeps a reference to problem. Throws std::invalid_argument for a node whose

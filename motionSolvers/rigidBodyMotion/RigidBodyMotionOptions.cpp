@@ -130,7 +130,12 @@ std::string_view formulationName(RbmFormulation formulation)
 
 std::string_view algorithmName(RbmAlgorithm algorithm)
 {
-    return algorithm == RbmAlgorithm::newton ? "newton" : "localGlobal";
+    switch (algorithm) {
+    case RbmAlgorithm::newton: return "newton";
+    case RbmAlgorithm::localGlobal: return "localGlobal";
+    case RbmAlgorithm::reducedNewton: return "reducedNewton";
+    }
+    return "newton";
 }
 
 std::string_view linearSolverName(LinearSolverKind kind)
@@ -213,8 +218,10 @@ RigidBodyMotionOptions RigidBodyMotionOptions::read(const io::Dictionary& coeffi
                                       ? RbmFormulation::nonlinear
                                       : RbmFormulation::linearized;
         } else if (keyword == "algorithm") {
-            options.algorithm =
-                readChoice(entry, {"newton", "localGlobal"}) == "newton" ? RbmAlgorithm::newton : RbmAlgorithm::localGlobal;
+            const std::string choice = readChoice(entry, {"newton", "localGlobal", "reducedNewton"});
+            options.algorithm = choice == "newton"        ? RbmAlgorithm::newton
+                                : choice == "localGlobal" ? RbmAlgorithm::localGlobal
+                                                          : RbmAlgorithm::reducedNewton;
         } else if (keyword == "weighting") {
             options.weighting =
                 edgeWeightingFromName(readChoice(entry, {"uniform", "inverseDistance", "inverseDistanceSquared"}));

@@ -41,7 +41,7 @@ enum class RbmCoupling { coupled, decoupled };
 enum class RbmFormulation { nonlinear, linearized };
 // How the coupled nonlinear energy is minimised: Newton (SNES, analytic Hessian, started from
 // the linearized solution) or local/global alternation that hands over to Newton when it stalls.
-enum class RbmAlgorithm { newton, localGlobal };
+enum class RbmAlgorithm { newton, localGlobal, reducedNewton };
 
 // Stiffening of the edges near chosen patches, OpenFOAM's diffusivity syntax
 // (`inverseDistance (patches)`, `quadratic inverseDistance (patches)`, and the wrapper
@@ -64,7 +64,7 @@ inline constexpr double maxStiffeningExponent = 4.0;
 struct RigidBodyMotionOptions {
     RbmCoupling coupling = RbmCoupling::coupled;
     RbmFormulation formulation = RbmFormulation::nonlinear;
-    RbmAlgorithm algorithm = RbmAlgorithm::newton;
+    RbmAlgorithm algorithm = RbmAlgorithm::reducedNewton;
     EdgeWeighting weighting = EdgeWeighting::inverseDistanceSquared;
     int subSteps = 0;                  // 0: automatic
     int maxSubStepSplits = 6;

@@ -12,6 +12,7 @@
 #include "PointPatchDisplacement.hpp"
 #include "PseudoTwoDExtraction.hpp"
 #include "RbmEnergy.hpp"
+#include "ReducedNewtonSolver.hpp"
 #include "Stiffening.hpp"
 #include "SubStepping.hpp"
 #include "ThesisQuality.hpp"
@@ -513,6 +514,14 @@ std::unique_ptr<RbmSolver> RigidBodyMotionSolver::Impl::makeSolver(const RbmProb
         localGlobal.maximumIterations = options.maxIterations.value_or(200);
         localGlobal.displacementTolerance = options.tolerance;
         return std::make_unique<LocalGlobalThenNewton>(forProblem, localGlobal, newton);
+    }
+    if (options.algorithm == RbmAlgorithm::reducedNewton) {
+        ReducedNewtonOptions reduced;
+        reduced.linearSolver = options.linearSolver;
+        reduced.relativeTolerance = newton.relativeTolerance;
+        reduced.absoluteTolerance = newton.absoluteTolerance;
+        if (options.maxIterations) reduced.maximumIterations = *options.maxIterations;
+        return std::make_unique<ReducedNewtonSolver>(forProblem, reduced);
     }
     if (options.maxIterations) newton.maximumIterations = *options.maxIterations;
     return std::make_unique<CoupledNewtonSolver>(forProblem, newton);

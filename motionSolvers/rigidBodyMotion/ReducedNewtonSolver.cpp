@@ -1,0 +1,648 @@
+#include "ReducedNewtonSolver.hpp"
+
+#include "BlockRowLayout.hpp"
+#include "LocalGlobalSolver.hpp"
+#include "ReducedLinearizedOperator.hpp"
+#include "ThreadCount.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+namespace rbm::motion {
+
+namespace {
+
+Vector3 times(const std::array<double, 9>& m, const Vector3& v)
+{
+    return {m[0] * v.x + m[1] * v.y + m[2] * v.z, m[3] * v.x + m[4] * v.y + m[5] * v.z,
+            m[6] * v.x + m[7] * v.y + m[8] * v.z};
+}
+
+// n nᵀ / (nᵀ H n): the inverse of H restricted to turns about n; zero where that curvature is not positive.
+std::array<double, 9> axisInverse(const std::array<double, 9>& h, const Vector3& n)
+{
+    const double curvature = dot(n, times(h, n));
+    std::array<double, 9> map{};
+    if (!(curvature > 0.0)) return map;
+    for (int p = 0; p < 3; ++p)
+        for (int q = 0; q < 3; ++q) map[3 * p + q] = n[p] * n[q] / curvature;
+    return map;
+}
+
+// H⁻¹ of a symmetric 3×3 matrix by cofactors; zero unless H is positive definite (leading
+// minors). At a best fit H_δδ is positive semi-definite; a zero map leaves S = K there, still
+// positive definite, so the step stays a descent direction.
+std::array<double, 9> symmetricInverse(const std::array<double, 9>& m)
+{
+    const double c00 = m[4] * m[8] - m[5] * m[7];
+    const double c01 = m[5] * m[6] - m[3] * m[8];
+    const double c02 = m[3] * m[7] - m[4] * m[6];
+    const double determinant = m[0] * c00 + m[1] * c01 + m[2] * c02;
+    const double scale = (m[0] + m[4] + m[8]) / 3.0;
+    const double minor2 = m[0] * m[4] - m[1] * m[3];
+    std::array<double, 9> inverse{};
+    if (!(m[0] > 0.0) || !(minor2 > 0.0) || !(determinant > 1e-12 * scale * scale * scale)) return inverse;
+    inverse[0] = c00 / determinant;
+    inverse[1] = (m[2] * m[7] - m[1] * m[8]) / determinant;
+    inverse[2] = (m[1] * m[5] - m[2] * m[4]) / determinant;
+    inverse[3] = c01 / determinant;
+    inverse[4] = (m[0] * m[8] - m[2] * m[6]) / determinant;
+    inverse[5] = (m[2] * m[3] - m[0] * m[5]) / determinant;
+    inverse[6] = c02 / determinant;
+    inverse[7] = (m[1] * m[6] - m[0] * m[7]) / determinant;
+    inverse[8] = (m[0] * m[4] - m[1] * m[3]) / determinant;
+    return inverse;
+}
+
+// Sums in index order: the same result for any thread count.
+double dotProduct(std::span<const double> a, std::span<const double> b)
+{
+    double sum = 0.0;
+    for (std::size_t k = 0; k < a.size(); ++k) sum += a[k] * b[k];
+    return sum;
+}
+
+double euclideanNorm(std::span<const double> a) { return std::sqrt(dotProduct(a, a)); }
+
+} // namespace
+
+ReducedNewtonSolver::ReducedNewtonSolver(const RbmProblem& problem, ReducedNewtonOptions options)
+    : problem_(problem), options_(options)
+{
+    const int n = problem.nodeCount();
+    const int dim = problem.dimension();
+    const CellNeighbourGraph& graph = problem.graph();
+    absoluteTolerance_ = options.absoluteTolerance;
+    if (absoluteTolerance_ < 0.0) {
+        // CoupledNewtonSolver's default: about 1e-11 of a cell per node.
+        double sum = 0.0;
+        for (int i = 0; i < n; ++i)
+            for (int e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e) {
+                Vector3 d = problem.referencePoints()[graph.neighbours[e]] - problem.referencePoints()[i];
+                if (dim == 2) d.z = 0.0;
+                sum += problem.edgeWeights()[e] * norm(d);
+            }
+        const double meanWeightedLength = graph.edgeCount() > 0 ? sum / graph.edgeCount() : 1.0;
+        absoluteTolerance_ = 1e-11 * meanWeightedLength * std::sqrt(std::max(1, problem.unknownNodeCount()));
+    }
+    nodeVector_.assign(n, Vector3{});
+    nodeRotation_.assign(n, Vector3{});
+    rotationMaps_.assign(problem.unknownNodeCount(), {});
+    edgeRotated_.assign(graph.neighbours.size(), Vector3{});
+    transposeEdge_.assign(graph.neighbours.size(), -1);
+    for (int i = 0; i < n; ++i)
+        for (int e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e) {
+            const int j = graph.neighbours[e];
+            for (int f = graph.offsets[j]; f < graph.offsets[j + 1]; ++f)
+                if (graph.neighbours[f] == i) transposeEdge_[e] = f;
+            if (transposeEdge_[e] < 0) throw std::invalid_argument("ReducedNewtonSolver: the graph is not symmetric");
+        }
+    if (problem.unknownNodeCount() == 0) return;
+
+    // K: the displacement block of the Hessian, factorised once (file comment).
+    const BlockPattern& pattern = problem.blockPattern();
+    laplacian_ = coupledDisplacementLaplacian(problem);
+    vectorSystem_ = problem.hasSlidingNodes();
+    const int blockSize = vectorSystem_ ? dim : 1;
+    PetscMPIInt ranks = 1;
+    RBM_CHECK_PETSC(MPI_Comm_size(solverCommunicator(), &ranks));
+#if defined(PETSC_HAVE_SUITESPARSE)
+    // One rank, scalar K: CHOLMOD's supernodal Cholesky. On the 40k-node airfoil its
+    // back-substitution costs 6.5 MFlop against MUMPS's 350 (PETSc's flop count, -log_view), and
+    // the back-substitutions are most of this solver's work.
+    if (!vectorSystem_ && ranks == 1) {
+        laplacianOptions_ = std::make_unique<InheritedOptions>("reduced");
+        laplacianOptions_->addDefault("pc_factor_mat_solver_type", "cholmod");
+    }
+#endif
+    system_ = std::make_unique<BlockSystemSolver>(pattern.rowOffsets, pattern.columns, blockSize,
+                                                  MatrixSymmetry::symmetricPositiveDefinite, options.linearSolver, dim,
+                                                  options.laplacianRelativeTolerance, "reduced");
+    if (!vectorSystem_) {
+        system_->setMatrix(laplacian_);
+    } else {
+        std::vector<double> blocks(static_cast<std::size_t>(pattern.blockCount()) * dim * dim, 0.0);
+        for (int position = 0; position < pattern.blockCount(); ++position)
+            for (int q = 0; q < dim; ++q)
+                blocks[(static_cast<std::size_t>(position) * dim + q) * dim + q] = laplacian_[position];
+        problem.projectSlidingBlocks(blocks, dim);
+        system_->setMatrix(blocks);
+    }
+    // One rank and a factorisation (not the user's choice of an iterative method): all components at once.
+    multipleRightHandSides_ = !vectorSystem_ && system_->isDirect() && ranks == 1;
+    componentIn_.resize(problem.unknownNodeCount());
+    componentOut_.resize(problem.unknownNodeCount());
+}
+
+ReducedNewtonSolver::~ReducedNewtonSolver() = default;
+
+double ReducedNewtonSolver::fitAndEnergy(std::span<const Vector3> displacement, std::vector<Matrix3>& rotations) const
+{
+    fitNodeRotations(problem_, displacement, rotations);
+    const CellNeighbourGraph& graph = problem_.graph();
+    const std::vector<Vector3>& x = problem_.referencePoints();
+    const std::vector<int>& nodes = problem_.unknownNodes();
+    const int m = problem_.unknownNodeCount();
+    const bool planar = problem_.dimension() == 2;
+    std::vector<double> nodeEnergy(static_cast<std::size_t>(m));
+#pragma omp parallel for schedule(static) if (worthThreading(graph.neighbours.size()))
+    for (int a = 0; a < m; ++a) {
+        const int i = nodes[a];
+        double sum = 0.0;
+        for (int e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e) {
+            const int j = graph.neighbours[e];
+            Vector3 d = x[j] - x[i];
+            Vector3 relative = displacement[j] - displacement[i];
+            if (planar) d.z = relative.z = 0.0;
+            sum += problem_.edgeWeights()[e] * normSquared(relative + d - rotations[i] * d);
+        }
+        nodeEnergy[a] = sum;
+    }
+    double sum = 0.0;
+    for (double value : nodeEnergy) sum += value;
+    return 0.5 * sum;
+}
+
+void ReducedNewtonSolver::gradient(std::span<const Vector3> displacement, std::span<const Matrix3> rotations,
+                                   std::span<double> g) const
+{
+    const CellNeighbourGraph& graph = problem_.graph();
+    const std::vector<Vector3>& x = problem_.referencePoints();
+    const std::vector<int>& nodes = problem_.unknownNodes();
+    const int m = problem_.unknownNodeCount();
+    const int dim = problem_.dimension();
+    const bool planar = dim == 2;
+#pragma omp parallel for schedule(static) if (worthThreading(graph.neighbours.size()))
+    for (int a = 0; a < m; ++a) {
+        const int k = nodes[a];
+        Vector3 sum{};
+        for (int e = graph.offsets[k]; e < graph.offsets[k + 1]; ++e) {
+            const int j = graph.neighbours[e];
+            Vector3 d = x[j] - x[k];
+            Vector3 relative = displacement[k] - displacement[j];
+            if (planar) d.z = relative.z = 0.0;
+            const bool unknown = problem_.isUnknown(j);
+            Vector3 term = (unknown ? 2.0 : 1.0) * (relative - d) + rotations[k] * d;
+            if (unknown) term += rotations[j] * d;
+            sum += problem_.edgeWeights()[e] * term;
+        }
+        for (int q = 0; q < dim; ++q) g[static_cast<std::size_t>(a) * dim + q] = sum[q];
+    }
+    problem_.projectSliding(g, dim);
+}
+
+void ReducedNewtonSolver::prepareHessian(std::span<const Vector3> displacement, std::span<const Matrix3> rotations)
+{
+    const CellNeighbourGraph& graph = problem_.graph();
+    const std::vector<Vector3>& x = problem_.referencePoints();
+    const std::vector<int>& nodes = problem_.unknownNodes();
+    const int m = problem_.unknownNodeCount();
+    const bool planar = problem_.dimension() == 2;
+#pragma omp parallel for schedule(static) if (worthThreading(graph.neighbours.size()))
+    for (int a = 0; a < m; ++a) {
+        const int i = nodes[a];
+        // H_δδ = Σ w [(q·e) I − (e qᵀ + q eᵀ)/2]
+        std::array<double, 9> h{};
+        for (int e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e) {
+            const int j = graph.neighbours[e];
+            Vector3 d = x[j] - x[i];
+            Vector3 relative = displacement[j] - displacement[i];
+            if (planar) d.z = relative.z = 0.0;
+            const Vector3 edge = d + relative;
+            const Vector3 q = rotations[i] * d;
+            edgeRotated_[e] = q;
+            const double w = problem_.edgeWeights()[e];
+            const double qe = dot(q, edge);
+            for (int r = 0; r < 3; ++r)
+                for (int c = 0; c < 3; ++c)
+                    h[3 * r + c] += w * ((r == c ? qe : 0.0) - 0.5 * (edge[r] * q[c] + q[r] * edge[c]));
+        }
+        if (planar) rotationMaps_[a] = axisInverse(h, Vector3{0.0, 0.0, 1.0});
+        else if (problem_.rotatesAboutNormalOnly(i)) rotationMaps_[a] = axisInverse(h, problem_.slidingNormal(i));
+        else rotationMaps_[a] = symmetricInverse(h);
+    }
+}
+
+void ReducedNewtonSolver::applyHessian(std::span<const double> v, std::span<double> y)
+{
+    const CellNeighbourGraph& graph = problem_.graph();
+    const std::vector<int>& nodes = problem_.unknownNodes();
+    const int m = problem_.unknownNodeCount();
+    const int dim = problem_.dimension();
+    std::vector<double>& projected = projected_;
+    projected.assign(v.begin(), v.end());
+    problem_.projectSliding(projected, dim);
+    // Prescribed entries of nodeVector_ and nodeRotation_ stay zero.
+    for (int a = 0; a < m; ++a) {
+        Vector3& value = nodeVector_[nodes[a]];
+        for (int q = 0; q < dim; ++q) value[q] = projected[static_cast<std::size_t>(a) * dim + q];
+    }
+    // y_i = H_δδ,i⁻¹ Σ_j w (R_i d) × (v_j − v_i)
+#pragma omp parallel for schedule(static) if (worthThreading(graph.neighbours.size()))
+    for (int a = 0; a < m; ++a) {
+        const int i = nodes[a];
+        Vector3 b{};
+        for (int e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e)
+            b += problem_.edgeWeights()[e] * cross(edgeRotated_[e], nodeVector_[graph.neighbours[e]] - nodeVector_[i]);
+        nodeRotation_[i] = times(rotationMaps_[a], b);
+    }
+    // (S v)_k = (K v)_k + Σ_j w (y_k × R_k d + [j unknown] y_j × R_j d)
+#pragma omp parallel for schedule(static) if (worthThreading(graph.neighbours.size()))
+    for (int a = 0; a < m; ++a) {
+        const int k = nodes[a];
+        Vector3 sum{};
+        for (int e = graph.offsets[k]; e < graph.offsets[k + 1]; ++e) {
+            // R_k d_kj = edgeRotated_[e], R_j d_kj = −edgeRotated_[transpose].
+            const int j = graph.neighbours[e];
+            const bool unknown = problem_.isUnknown(j);
+            Vector3 term = (unknown ? 2.0 : 1.0) * (nodeVector_[k] - nodeVector_[j]) +
+                           cross(nodeRotation_[k], edgeRotated_[e]);
+            if (unknown) term -= cross(nodeRotation_[j], edgeRotated_[transposeEdge_[e]]);
+            sum += problem_.edgeWeights()[e] * term;
+        }
+        for (int q = 0; q < dim; ++q) y[static_cast<std::size_t>(a) * dim + q] = sum[q];
+    }
+    problem_.projectSliding(y, dim);
+}
+
+bool ReducedNewtonSolver::precondition(std::span<const double> r, std::span<double> z)
+{
+    const int m = problem_.unknownNodeCount();
+    const int dim = problem_.dimension();
+    if (!vectorSystem_ && multipleRightHandSides_) {
+        // Every component in one back-substitution (MatMatSolve): the factor is read once.
+        if (!factor_) {
+            KSP ksp = system_->ksp();
+            PC pc = nullptr;
+            RBM_CHECK_PETSC(KSPSetUp(ksp));
+            RBM_CHECK_PETSC(KSPGetPC(ksp, &pc));
+            RBM_CHECK_PETSC(PCFactorGetMatrix(pc, &factor_));
+            RBM_CHECK_PETSC(MatCreateSeqDense(PETSC_COMM_SELF, m, dim, nullptr, components_.out()));
+            RBM_CHECK_PETSC(MatCreateSeqDense(PETSC_COMM_SELF, m, dim, nullptr, solutions_.out()));
+        }
+        PetscScalar* in = nullptr;
+        RBM_CHECK_PETSC(MatDenseGetArrayWrite(components_, &in));
+        for (int a = 0; a < m; ++a)
+            for (int q = 0; q < dim; ++q) in[static_cast<std::size_t>(q) * m + a] = r[static_cast<std::size_t>(a) * dim + q];
+        RBM_CHECK_PETSC(MatDenseRestoreArrayWrite(components_, &in));
+        RBM_CHECK_PETSC(MatMatSolve(factor_, components_, solutions_));
+        const PetscScalar* out = nullptr;
+        RBM_CHECK_PETSC(MatDenseGetArrayRead(solutions_, &out));
+        for (int a = 0; a < m; ++a)
+            for (int q = 0; q < dim; ++q) z[static_cast<std::size_t>(a) * dim + q] = out[static_cast<std::size_t>(q) * m + a];
+        RBM_CHECK_PETSC(MatDenseRestoreArrayRead(solutions_, &out));
+        return true;
+    }
+    if (!vectorSystem_) {
+        // The same K for every component.
+        for (int q = 0; q < dim; ++q) {
+            for (int a = 0; a < m; ++a) componentIn_[a] = r[static_cast<std::size_t>(a) * dim + q];
+            const BlockSystemSolver::Report report = system_->solve(componentIn_, componentOut_, false);
+            if (!report.converged) return false;
+            for (int a = 0; a < m; ++a) z[static_cast<std::size_t>(a) * dim + q] = componentOut_[a];
+        }
+        return true;
+    }
+    std::vector<double> projected(r.begin(), r.end());
+    problem_.projectSliding(projected, dim);
+    const BlockSystemSolver::Report report = system_->solve(projected, z, false);
+    problem_.projectSliding(z, dim);
+    return report.converged;
+}
+
+bool ReducedNewtonSolver::newtonDirection(std::span<const double> g,
+                                          double forcing, std::span<double> step, int& iterations,
+                                          bool& negativeCurvature)
+{
+    // Flexible (Polak–Ribière) preconditioned CG, so that an iterative K⁻¹ is allowed too.
+    const std::size_t size = g.size();
+    std::vector<double> r(size), z(size), previousZ(size), p(size), sp(size);
+    for (std::size_t k = 0; k < size; ++k) r[k] = -g[k];
+    std::fill(step.begin(), step.end(), 0.0);
+    const double target = forcing * euclideanNorm(g);
+    if (!precondition(r, z)) return false;
+    p = z;
+    double rz = dotProduct(r, z);
+    negativeCurvature = false;
+    for (int iteration = 0; iteration < options_.maximumLinearIterations; ++iteration) {
+        applyHessian(p, sp);
+        const double curvature = dotProduct(p, sp);
+        if (!(curvature > 0.0)) {
+            // Steihaug: stop at a direction of negative curvature. With nothing yet, the
+            // preconditioned gradient −K⁻¹∇Ẽ (a local/global step).
+            negativeCurvature = true;
+            if (iteration == 0) std::copy(z.begin(), z.end(), step.begin());
+            return true;
+        }
+        const double alpha = rz / curvature;
+        for (std::size_t k = 0; k < size; ++k) {
+            step[k] += alpha * p[k];
+            r[k] -= alpha * sp[k];
+        }
+        ++iterations;
+        if (euclideanNorm(r) <= target) return true;
+        previousZ.swap(z);
+        if (!precondition(r, z)) return false;
+        double numerator = 0.0;
+        for (std::size_t k = 0; k < size; ++k) numerator += r[k] * (z[k] - previousZ[k]);
+        const double beta = std::max(0.0, numerator / rz);
+        rz = dotProduct(r, z);
+        for (std::size_t k = 0; k < size; ++k) p[k] = z[k] + beta * p[k];
+    }
+    return true;  // the iteration limit: the step so far still is a descent direction
+}
+
+double ReducedNewtonSolver::reducedEnergy(std::span<const Vector3> displacement)
+{
+    std::vector<Matrix3> rotations;
+    return fitAndEnergy(displacement, rotations);
+}
+
+std::vector<double> ReducedNewtonSolver::reducedGradient(std::span<const Vector3> displacement)
+{
+    std::vector<Matrix3> rotations;
+    fitAndEnergy(displacement, rotations);
+    std::vector<double> g(static_cast<std::size_t>(problem_.unknownNodeCount()) * problem_.dimension());
+    gradient(displacement, rotations, g);
+    return g;
+}
+
+std::vector<double> ReducedNewtonSolver::reducedHessianTimes(std::span<const Vector3> displacement,
+                                                             std::span<const double> direction)
+{
+    std::vector<Matrix3> rotations;
+    fitAndEnergy(displacement, rotations);
+    prepareHessian(displacement, rotations);
+    std::vector<double> y(direction.size());
+    applyHessian(direction, y);
+    return y;
+}
+
+RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplacement, const RbmState* initialGuess)
+{
+    problem_.checkNodeArray(prescribedDisplacement, "prescribed displacement");
+    if (problem_.unknownNodeCount() == 0) return prescribedOnlyResult(problem_, prescribedDisplacement);
+    const int n = problem_.nodeCount();
+    const int m = problem_.unknownNodeCount();
+    const int dim = problem_.dimension();
+    const std::size_t size = static_cast<std::size_t>(m) * dim;
+    const std::vector<int>& nodes = problem_.unknownNodes();
+    const CellNeighbourGraph& graph = problem_.graph();
+    const BlockPattern& pattern = problem_.blockPattern();
+    RbmResult result;
+
+    std::vector<double> offset(size);  // sliding offsets c n, compact
+    problem_.slidingOffset(prescribedDisplacement, offset, dim);
+    auto flat = [dim](Vector3 v) {
+        if (dim == 2) v.z = 0.0;
+        return v;
+    };
+    // b_k = Σ_{j prescribed} w ū_j − (K c)_k: the right-hand side of the harmonic interpolation.
+    auto boundaryRightHandSide = [&](std::span<const Vector3> values, std::span<const double> slidingOffset) {
+        std::vector<double> b(size, 0.0);
+        for (int a = 0; a < m; ++a) {
+            const int i = nodes[a];
+            Vector3 sum{};
+            for (int e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e)
+                if (!problem_.isUnknown(graph.neighbours[e]))
+                    sum += problem_.edgeWeights()[e] * flat(values[graph.neighbours[e]]);
+            for (int position = pattern.rowOffsets[a]; position < pattern.rowOffsets[a + 1]; ++position)
+                for (int q = 0; q < dim; ++q)
+                    sum[q] -= laplacian_[position] * slidingOffset[static_cast<std::size_t>(pattern.columns[position]) * dim + q];
+            for (int q = 0; q < dim; ++q) b[static_cast<std::size_t>(a) * dim + q] = sum[q];
+        }
+        return b;
+    };
+
+    std::vector<Vector3> u(n);
+    for (int node = 0; node < n; ++node)
+        if (!problem_.isUnknown(node)) u[node] = flat(prescribedDisplacement[node]);
+    // u_unknown ← c n + P (value − c n): onto the sliding planes.
+    auto setUnknowns = [&](std::vector<Vector3>& target, std::span<const double> values) {
+        std::vector<double> tangential(size);
+        for (std::size_t k = 0; k < size; ++k) tangential[k] = values[k] - offset[k];
+        problem_.projectSliding(tangential, dim);
+        for (int a = 0; a < m; ++a) {
+            Vector3 value{};
+            for (int q = 0; q < dim; ++q)
+                value[q] = offset[static_cast<std::size_t>(a) * dim + q] + tangential[static_cast<std::size_t>(a) * dim + q];
+            target[nodes[a]] = value;
+        }
+    };
+
+    std::vector<double> start(size), correction(size);
+    std::string failure;
+    if (initialGuess) {
+        // Warm start. When the guess is this solver's own last result and the one before is
+        // known, a secant step along the boundary's path first: G = u_n + α (u_n − u_{n−1}),
+        // α fitting the prescribed change best (on a pitching airfoil, the start is then off by
+        // the second difference of the motion instead of the first). Then the boundary
+        // mismatch moved in harmonically: start = G + K⁻¹ (b(new) − b(G)).
+        problem_.checkNodeArray(initialGuess->displacement, "initial guess displacement");
+        std::vector<Vector3> base(initialGuess->displacement.begin(), initialGuess->displacement.end());
+        const bool secant = !previousSolution_.empty() && lastSolution_ == base;
+        if (secant) {
+            double numerator = 0.0, denominator = 0.0;
+            for (int node = 0; node < n; ++node) {
+                if (problem_.isUnknown(node)) continue;
+                const Vector3 step = flat(lastSolution_[node] - previousSolution_[node]);
+                numerator += dot(flat(prescribedDisplacement[node]) - flat(lastSolution_[node]), step);
+                denominator += normSquared(step);
+            }
+            const double alpha = denominator > 0.0 ? std::clamp(numerator / denominator, -2.0, 2.0) : 0.0;
+            for (int node = 0; node < n; ++node) base[node] += alpha * (lastSolution_[node] - previousSolution_[node]);
+        }
+        std::vector<double> baseOffset(size);
+        problem_.slidingOffset(base, baseOffset, dim);
+        std::vector<double> change = boundaryRightHandSide(prescribedDisplacement, offset);
+        const std::vector<double> previous = boundaryRightHandSide(base, baseOffset);
+        for (std::size_t k = 0; k < size; ++k) change[k] -= previous[k];
+        if (!precondition(change, correction)) failure = "DIVERGED_LINEAR_SOLVE (harmonic predictor)";
+        for (int a = 0; a < m; ++a) {
+            const Vector3 guess = flat(base[nodes[a]]);
+            for (int q = 0; q < dim; ++q) {
+                const std::size_t k = static_cast<std::size_t>(a) * dim + q;
+                start[k] = guess[q] + correction[k] + (offset[k] - baseOffset[k]);
+            }
+        }
+    } else {
+        // Cold start: the harmonic interpolation of the boundary, c n + P K⁻¹ P b.
+        if (!precondition(boundaryRightHandSide(prescribedDisplacement, offset), correction))
+            failure = "DIVERGED_LINEAR_SOLVE (harmonic start)";
+        for (std::size_t k = 0; k < size; ++k) start[k] = offset[k] + correction[k];
+    }
+    setUnknowns(u, start);
+
+    std::vector<Matrix3> rotations, trialRotations;
+    std::vector<Vector3> trial;
+    std::vector<double> g(size), trialGradient(size), step(size);
+    double energy = fitAndEnergy(u, rotations);
+    gradient(u, rotations, g);
+    double gradientNorm = euclideanNorm(g);
+    const double tolerance = std::max(absoluteTolerance_, options_.relativeTolerance * gradientNorm);
+    // ε Σ_j w (|u_i| + |u_j| + |d|) per displacement row: RbmEnergy::gradientRoundoffNorm.
+    std::vector<double> magnitudes(static_cast<std::size_t>(m));
+    auto roundoffNorm = [&](const std::vector<Vector3>& displacement) {
+        const std::vector<Vector3>& x = problem_.referencePoints();
+#pragma omp parallel for schedule(static) if (worthThreading(graph.neighbours.size()))
+        for (int a = 0; a < m; ++a) {
+            const int i = nodes[a];
+            double magnitude = 0.0;
+            for (int e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e) {
+                const int j = graph.neighbours[e];
+                magnitude += problem_.edgeWeights()[e] *
+                             (norm(displacement[i]) + norm(displacement[j]) + norm(flat(x[j] - x[i])));
+            }
+            magnitudes[a] = magnitude;
+        }
+        double sum = 0.0;
+        for (double magnitude : magnitudes) sum += dim * magnitude * magnitude;
+        return std::numeric_limits<double>::epsilon() * std::sqrt(sum);
+    };
+
+    constexpr double roundoffFactor = 10.0;  // as CoupledNewtonSolver's convergence test
+    // -rbm_reduced_max_it N (Newton steps) and -rbm_reduced_monitor, from PETSc's options.
+    PetscInt maximumIterations = options_.maximumIterations;
+    PetscBool given = PETSC_FALSE, monitor = PETSC_FALSE;
+    RBM_CHECK_PETSC(PetscOptionsGetInt(nullptr, "rbm_reduced_", "-max_it", &maximumIterations, &given));
+    RBM_CHECK_PETSC(PetscOptionsHasName(nullptr, "rbm_reduced_", "-monitor", &monitor));
+    double forcing = 0.1;
+    double previousGradientNorm = gradientNorm;
+    int localGlobalSteps = 0;
+    std::string reason = failure;
+    result.converged = false;
+    for (int iteration = 0; failure.empty(); ++iteration) {
+        if (!std::isfinite(energy) || !std::isfinite(gradientNorm)) {
+            reason = "DIVERGED_FNORM_NAN";
+            break;
+        }
+        if (gradientNorm <= tolerance) {
+            result.converged = true;
+            reason = gradientNorm <= absoluteTolerance_ ? "CONVERGED_FNORM_ABS" : "CONVERGED_FNORM_RELATIVE";
+            break;
+        }
+        const double roundingLevel = roundoffFactor * roundoffNorm(u);
+        if (gradientNorm <= roundingLevel) {
+            result.converged = true;
+            reason = "CONVERGED_FNORM_ABS (rounding level)";
+            break;
+        }
+        if (iteration >= maximumIterations) {
+            reason = "DIVERGED_MAX_IT";
+            break;
+        }
+        // Eisenstat–Walker (choice 2): η = 0.9 (‖g‖/‖g_prev‖)², safeguarded, at most 0.5, and no
+        // tighter than the final tolerance needs.
+        if (iteration > 0) {
+            const double ratio = gradientNorm / previousGradientNorm;
+            const double safeguard = 0.9 * forcing * forcing;
+            forcing = 0.9 * ratio * ratio;
+            if (safeguard > 0.1) forcing = std::max(forcing, safeguard);
+        }
+        forcing = std::clamp(forcing, 0.1 * std::max(tolerance, roundingLevel) / gradientNorm, 0.5);
+
+        prepareHessian(u, rotations);
+        const int linearIterationsBefore = result.linearIterations;
+        bool negativeCurvature = false;
+        if (!newtonDirection(g, forcing, step, result.linearIterations, negativeCurvature)) {
+            reason = "DIVERGED_LINEAR_SOLVE (Laplacian)";
+            break;
+        }
+        double slope = dotProduct(g, step);
+        if (!(slope < 0.0)) {
+            // Not a descent direction (rounding near a negative curvature): a local/global step.
+            if (!precondition(g, step)) {
+                reason = "DIVERGED_LINEAR_SOLVE (Laplacian)";
+                break;
+            }
+            for (double& value : step) value = -value;
+            slope = dotProduct(g, step);
+            negativeCurvature = true;
+        }
+        if (negativeCurvature) ++localGlobalSteps;
+
+        // Backtracking (Armijo) on Ẽ; where Ẽ no longer resolves the decrease, a step that
+        // lowers ‖P∇Ẽ‖ is taken (CoupledNewtonSolver's line search).
+        const double roundoff = 1e-13 * std::abs(energy) + 1e-300;
+        double lambda = 1.0;
+        bool accepted = false;
+        double trialEnergy = energy, trialGradientNorm = gradientNorm;
+        for (int attempt = 0; attempt < 40 && !accepted; ++attempt) {
+            trial = u;
+            for (int a = 0; a < m; ++a) {
+                Vector3& value = trial[nodes[a]];
+                for (int q = 0; q < dim; ++q) value[q] += lambda * step[static_cast<std::size_t>(a) * dim + q];
+                if (problem_.kind(nodes[a]) == NodeKind::sliding) {  // back onto the plane exactly
+                    const Vector3& normal = problem_.slidingNormal(nodes[a]);
+                    Vector3 c{};
+                    for (int q = 0; q < dim; ++q) c[q] = offset[static_cast<std::size_t>(a) * dim + q];
+                    value -= (dot(value, normal) - dot(c, normal)) * normal;
+                }
+            }
+            trialEnergy = fitAndEnergy(trial, trialRotations);
+            bool gradientKnown = false;
+            if (std::isfinite(trialEnergy) && trialEnergy <= energy + 1e-4 * lambda * slope) {
+                accepted = true;
+            } else if (std::isfinite(trialEnergy) && trialEnergy <= energy + roundoff) {
+                gradient(trial, trialRotations, trialGradient);
+                trialGradientNorm = euclideanNorm(trialGradient);
+                gradientKnown = true;
+                accepted = trialGradientNorm < gradientNorm;
+            }
+            if (accepted) {
+                if (!gradientKnown) {
+                    gradient(trial, trialRotations, trialGradient);
+                    trialGradientNorm = euclideanNorm(trialGradient);
+                }
+                break;
+            }
+            // Minimiser of the quadratic through Ẽ(0), Ẽ'(0) and Ẽ(λ), kept in [0.1 λ, 0.5 λ].
+            double next = 0.5 * lambda;
+            if (std::isfinite(trialEnergy)) {
+                const double curvature = trialEnergy - energy - slope * lambda;
+                if (curvature > 0.0) next = -slope * lambda * lambda / (2.0 * curvature);
+            }
+            lambda = std::clamp(next, 0.1 * lambda, 0.5 * lambda);
+        }
+        if (!accepted) {
+            reason = "DIVERGED_LINE_SEARCH";
+            break;
+        }
+        ++result.iterations;
+        if (monitor)
+            std::printf("  reduced Newton %d: |P grad| %.6e -> %.6e, CG %d (forcing %.2e), step %.3g, energy %.12e%s\n",
+                        iteration, gradientNorm, trialGradientNorm, result.linearIterations - linearIterationsBefore,
+                        forcing, lambda, trialEnergy, negativeCurvature ? ", negative curvature" : "");
+        u.swap(trial);
+        rotations.swap(trialRotations);
+        g.swap(trialGradient);
+        energy = trialEnergy;
+        previousGradientNorm = gradientNorm;
+        gradientNorm = trialGradientNorm;
+    }
+
+    // History of the secant predictor: only along a chain of warm starts from own results.
+    if (initialGuess && !lastSolution_.empty()) previousSolution_.swap(lastSolution_);
+    else previousSolution_.clear();
+    lastSolution_ = u;
+    result.displacement = u;
+    result.rotation.assign(n, Vector3{});
+    if (rotations.size() == static_cast<std::size_t>(n))
+        for (int node : nodes) result.rotation[node] = rotationParameters(dim, rotations[node]);
+    std::vector<double> unknowns(problem_.unknownCount());
+    packUnknowns(problem_, result, unknowns);
+    const RbmEnergy exact(problem_, RotationModel::exact, prescribedDisplacement);
+    result.energy = exact.value(unknowns);
+    result.residualNorm = exact.projectedGradientNorm(unknowns);
+    std::ostringstream text;
+    text << reason;
+    if (localGlobalSteps > 0) text << " (" << localGlobalSteps << " local/global steps at negative curvature)";
+    result.reason = text.str();
+    return result;
+}
+
+} // namespace rbm::motion

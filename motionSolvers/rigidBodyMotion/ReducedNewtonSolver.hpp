@@ -1,0 +1,124 @@
+#pragma once
+// The coupled nonlinear RBM method by Newton's method on the displacements alone, with every
+// node's rotation eliminated by its best fit, and one Laplacian factorisation per run
+// (`algorithm reducedNewton`, the default; issue 12).
+//
+// The exact energy (RbmEnergy.hpp)  E(u, R) = 1/2 Σ_i Σ_j w_ij |e_ij − R_i d_ij|²,
+// e_ij = p_j − p_i, d_ij = x_j − x_i, holds R_i in the terms of node i alone. So
+//
+//     Ẽ(u) = min_R E(u, R) = E(u, R*(u)),   R*_i(u) = the best fit of node i's edges
+//
+// (the local step of LocalGlobalSolver: 2D atan2, 3D Kabsch) is a function of the
+// displacements only, with the same minima as E: (u, R*(u)) minimises E iff u minimises Ẽ.
+// Newton on Ẽ therefore never meets the stationary points with flipped node frames that
+// Newton on (u, R) can stop at (CoupledNewtonSolver.hpp, DESIGN.md §1).
+//
+// Derivatives (envelope theorem, ∂E/∂R = 0 at R*):
+//   ∇Ẽ = ∂E/∂u at R*, per unknown node k with d = x_j − x_k, t_j = [j unknown]:
+//       g_k = Σ_j w [(1 + t_j)(u_k − u_j − d) + R_k d + t_j R_j d]   (= K u − b(R*));
+//   ∇²Ẽ = S = H_uu − H_uδ H_δδ⁻¹ H_δu, the Schur complement of the exact Hessian in a
+//       local rotation chart R_i ← exp([δ_i]×) R_i (at ∂E/∂δ = 0 it does not depend on the
+//       chart). With q = R_i d_ij and e = e_ij:
+//         H_uu = K ⊗ I, K the coupled weighted graph Laplacian (constant: E is quadratic in u);
+//         H_δδ,i = Σ_j w [(q·e) I − (e qᵀ + q eᵀ)/2]   (block diagonal: δ_i only in node i's terms);
+//         S v:  y_i = H_δδ,i⁻¹ Σ_j w q_ij × (v_j − v_i),
+//               (S v)_k = (K v)_k + Σ_j w (y_k × R_k d + t_j y_j × R_j d).
+//   At u = 0 (R* = I) S is the linearized method's reduced operator (ReducedLinearizedOperator).
+//   A mirror node turns about its normal n only (δ = n φ); 2D rotations about z.
+//
+// Each Newton step solves S s = −∇Ẽ by preconditioned conjugate gradients, with K⁻¹ as the
+// preconditioner (S ≤ K; S = K on fields whose neighbourhoods do not turn): K depends on
+// neither the displacements nor the boundary values, so it is factorised (2D: Cholesky) or
+// its multigrid set up ONCE, when the solver is built, and kept for every iteration, sub-step
+// and time step. Inexact Newton (Eisenstat–Walker forcing) solves early steps loosely; a
+// direction of negative curvature stops CG (Steihaug), and at the first CG iteration the step
+// is then the preconditioned gradient −K⁻¹∇Ẽ, which is exactly a local/global step. A
+// backtracking line search on Ẽ keeps every step a descent step.
+//
+// Start: the lower-energy of (a) the harmonic interpolation K⁻¹ b(I) of the prescribed
+// displacements and, with an initial guess (the previous time step), (b) the guess moved by
+// the harmonic increment of the boundary, K⁻¹ (b(new) − b(old)).
+//
+// Convergence: as CoupledNewtonSolver: ‖P∇Ẽ‖ below the absolute tolerance (1e-11 × mean w|d|
+// × √unknown nodes by default), or 1e-10 × its start value, or 10 × the rounding level of the
+// gradient (RbmEnergy::gradientRoundoffNorm). ∇_R E = 0 at R*, so ‖P∇Ẽ‖ is ‖P∇E‖.
+//
+// Determinism: every loop over nodes writes its own node's entries and every sum runs in node
+// order, so the result is bit-identical for any thread count.
+//
+// PETSc options: -rbm_reduced_max_it N (Newton steps), -rbm_reduced_monitor (one line per step);
+// the Laplacian's solver reads rbm_reduced_ (e.g. -rbm_reduced_pc_factor_mat_solver_type mumps).
+// Result: iterations = Newton steps, linearIterations = CG iterations, residualNorm = ‖P∇E‖,
+// energy = E.
+
+#include "PetscSupport.hpp"
+#include "RbmEnergy.hpp"
+#include "RbmProblem.hpp"
+
+#include <array>
+#include <memory>
+#include <span>
+#include <vector>
+
+namespace rbm::motion {
+
+struct ReducedNewtonOptions {
+    LinearSolverKind linearSolver = LinearSolverKind::automatic;  // of the Laplacian K
+    int maximumIterations = 50;                                   // Newton steps
+    double relativeTolerance = 1e-10;                             // on ‖P∇Ẽ‖ relative to the start
+    double absoluteTolerance = -1.0;                              // < 0: CoupledNewtonOptions' default
+    int maximumLinearIterations = 1000;                           // CG iterations per Newton step
+    // When K is solved iteratively (3D above 20 000 unknown nodes: CG + GAMG): K⁻¹ is only the
+    // preconditioner of a flexible CG, which needs no exact inverse.
+    double laplacianRelativeTolerance = 1e-4;
+};
+
+class ReducedNewtonSolver : public RbmSolver {
+public:
+    explicit ReducedNewtonSolver(const RbmProblem& problem, ReducedNewtonOptions options = {});
+    ~ReducedNewtonSolver() override;
+
+    const RbmProblem& problem() const override { return problem_; }
+    RbmResult solve(std::span<const Vector3> prescribedDisplacement, const RbmState* initialGuess = nullptr) override;
+
+    // Ẽ, its projected gradient and S v at node displacements u (one per node), for tests.
+    double reducedEnergy(std::span<const Vector3> displacement);
+    std::vector<double> reducedGradient(std::span<const Vector3> displacement);
+    std::vector<double> reducedHessianTimes(std::span<const Vector3> displacement, std::span<const double> direction);
+
+private:
+    // Fits R*(u) into rotations_ and returns Ẽ(u).
+    double fitAndEnergy(std::span<const Vector3> displacement, std::vector<Matrix3>& rotations) const;
+    // g = P ∇Ẽ (compact, dimension() per unknown node) at u with its fitted rotations.
+    void gradient(std::span<const Vector3> displacement, std::span<const Matrix3> rotations, std::span<double> g) const;
+    // H_δδ⁻¹ per node at (u, R*(u)): the data of applyHessian.
+    void prepareHessian(std::span<const Vector3> displacement, std::span<const Matrix3> rotations);
+    // y = P S P v (compact vectors).
+    void applyHessian(std::span<const double> v, std::span<double> y);
+    // z = P K⁻¹ P r (compact vectors); returns false if an iterative Laplacian solve failed.
+    bool precondition(std::span<const double> r, std::span<double> z);
+    // Projected conjugate gradients on S s = −g to ‖S s + g‖ ≤ forcing ‖g‖; see the file comment.
+    bool newtonDirection(std::span<const double> g, double forcing,
+                         std::span<double> step, int& iterations, bool& negativeCurvature);
+
+    const RbmProblem& problem_;
+    ReducedNewtonOptions options_;
+    double absoluteTolerance_ = 0.0;
+    std::vector<double> laplacian_;  // scalar K in blockPattern() order
+    std::unique_ptr<BlockSystemSolver> system_;
+    bool vectorSystem_ = false;  // sliding nodes: K ⊗ I projected, one system
+    bool multipleRightHandSides_ = false;  // K factorised on one rank: MatMatSolve on all components
+    Mat factor_ = nullptr;                 // the factor inside system_'s PC (not owned)
+    PetscMat components_, solutions_;      // dense m × dimension right-hand sides and solutions
+    std::vector<std::array<double, 9>> rotationMaps_;  // per unknown node: H_δδ⁻¹ (or its axis restriction)
+    std::vector<Vector3> edgeRotated_;                 // per graph edge i→j of an unknown centre: R_i d_ij
+    std::vector<int> transposeEdge_;                   // per graph edge i→j: the edge j→i
+    std::unique_ptr<InheritedOptions> laplacianOptions_;  // rbm's defaults for the Laplacian's factorisation
+    // The last two results (node displacements), for the secant predictor of warm starts.
+    std::vector<Vector3> lastSolution_, previousSolution_;
+    // Work arrays (node-indexed).
+    std::vector<Vector3> nodeVector_, nodeRotation_;
+    std::vector<double> componentIn_, componentOut_, projected_;
+};
+
+} // namespace rbm::motion
