@@ -1023,7 +1023,7 @@ const char* usage =
     "                    [--memory-limit-gb G] [--diffusivity inverseDistance|uniform] [--airfoil DIR]\n"
     "                    [--work-dir DIR] [--keep]\n"
     "  --quick: sizes 1e4 (unless --sizes), 10 pitching steps (linearized only), no OpenFOAM, no rbmMoveMesh runs.\n"
-    "  Variants: decoupled, linearized, newton, localGlobal, decoupledLinearized, linearizedAssembled\n"
+    "  Variants: decoupled, linearized, newton, localGlobal, reducedNewton, decoupledLinearized, linearizedAssembled\n"
     "  (the linearized system assembled: direct in 2D and small 3D, else CG + GAMG), linearizedMatrixFree\n"
     "  ('linearized' takes the automatic choice: direct in 2D, matrix-free in 3D).\n"
     "  Sizes: RBM nodes (2D: nodes per plane) for the box-with-hole cases, cells for twist3D;\n"
