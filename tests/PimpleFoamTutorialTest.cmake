@@ -6,7 +6,8 @@
 #         -P PimpleFoamTutorialTest.cmake
 # Skips (prints "SKIPPED: ...", which tests/CMakeLists.txt declares as the skip message) when
 # pimpleFoam is not installed or, for rbm, when the plugin is not built.
-# Checks: pimpleFoam exits 0 and prints End after STEPS steps (moving the mesh: it writes
+# Checks: pimpleFoam exits 0 and prints End after STEPS steps (with rbm, the plugin's line of
+# every step says "inverted 0"; the mesh moves: pimpleFoam writes
 # polyMesh/points at the times written); forceCoeffs wrote a finite lift coefficient for every
 # step; OpenFOAM's checkMesh of every time written says "Mesh OK", no negative-volume cell, max
 # non-orthogonality at most MAX_NON_ORTHOGONALITY (the initial mesh: 27.09 degrees).
@@ -88,12 +89,26 @@ if(NOT status EQUAL 0 OR NOT out MATCHES "\nEnd\n")
   fail("pimpleFoam (${MOTION}): exit status ${status}, no End\nstdout (end):\n${out}\nstderr:\n${err}")
   return()
 endif()
-string(REGEX MATCHALL "\nTime = [^\n]*" steps "${out}")
+# pimpleFoam's "Time = t" lines (rbm's plugin logs "Time = t  sub-steps ..." lines too).
+string(REGEX MATCHALL "\nTime = [0-9.eE+-]+\n" steps "${out}")
 list(LENGTH steps stepCount)
 if(NOT stepCount EQUAL STEPS)
   fail("pimpleFoam: ${stepCount} time steps, expected ${STEPS}")
 endif()
 
+if(MOTION STREQUAL "rbm")
+  # rbm's own line per step: "Time = t  sub-steps n ... max non-orthogonality a  inverted n ...".
+  string(REGEX MATCHALL "\nTime = [^\n]* inverted [0-9]+" rbmLines "${out}")
+  list(LENGTH rbmLines rbmCount)
+  if(NOT rbmCount EQUAL STEPS)
+    fail("rbm's plugin logged ${rbmCount} steps, expected ${STEPS}")
+  endif()
+  foreach(line IN LISTS rbmLines)
+    if(NOT line MATCHES " inverted 0$")
+      fail("rbm's plugin reports inverted cells: ${line}")
+    endif()
+  endforeach()
+endif()
 file(GLOB lastPoints ${case}/0.0*/polyMesh/points)
 if(NOT lastPoints)
   fail("pimpleFoam wrote no polyMesh/points: the mesh did not move")
