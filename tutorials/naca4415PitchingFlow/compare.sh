@@ -102,7 +102,7 @@ done
 # inverted cells (t, first t)|first time failing"
 checkQuality() {
   awk '
-    /^Time = /{t=$3; n++}
+    /^Time = [^ ]+$/{t=$3; n++}
     /non-orthogonality Max:/{if ($4+0 > no) {no=$4+0; tno=t}}
     /[Ss]kewness = /{for (i=1;i<=NF;i++) if ($i=="=") s=$(i+1); s=s+0; if (s > sk) {sk=s; tsk=t}}
     /Number of negative volume cells:/{v=$NF+0; if (v > inv) {inv=v; tinv=t}; if (first=="") first=t}
@@ -123,6 +123,7 @@ for m in "${motions[@]}"; do
   f=$work/$m/flow
   row[$m,written]=$(checkQuality "$f/log.checkMesh")
   row[$m,steps]=$(checkQuality "$work/$m/motion/log.moveDynamicMesh")
+  row[$m,last]=$(awk '/^Time = /{t=$3} /non-orthogonality Max:/{no=$4} END{printf "%.4f° (t = %s)", no, t}' "$f/log.checkMesh")
   read mExec mClock < <(lastExec "$work/$m/motion/log.moveDynamicMesh")
   mSteps=$(grep -c '^ExecutionTime' "$work/$m/motion/log.moveDynamicMesh")
   read fExec fClock < <(lastExec "$f/log.pimpleFoam")
@@ -139,8 +140,9 @@ for m in "${motions[@]}"; do
   else
     row[$m,end]+=", $(grep -m1 -E 'FOAM FATAL|Floating point|[Ee]rror' "$f/log.pimpleFoam" | sed 's/^ *//; s/|/\\|/g' | cut -c1-70)"
   fi
-  row[$m,co]=$(awk '/^Time = /{n++} /^Courant Number/{if (n <= 20) {if ($6+0 > a) a=$6+0} else if ($6+0 > b) b=$6+0}
+  row[$m,co]=$(awk '/^Time = [^ ]+$/{n++} /^Courant Number/{if (n <= 20) {if ($6+0 > a) a=$6+0} else if ($6+0 > b) b=$6+0}
                     END{printf "%.2f, %.2f", a, b}' "$f/log.pimpleFoam")
+  # (rbm's plugin adds its own "Time = t  sub-steps ..." line to every step: counted apart.)
   # rbm's own line per step (plugin): "Time = t  sub-steps n  iterations n  residual r
   # worst quality q  max non-orthogonality a  inverted n  wall s s".
   row[$m,own]=$(awk '
@@ -176,7 +178,8 @@ echo "| … first time failing | $(cell rbm written 6) | $(cell laplacian writte
 echo "| … worst max non-orthogonality | $(cell rbm written 3) | $(cell laplacian written 3) |"
 echo "| … worst max skewness | $(cell rbm written 4) | $(cell laplacian written 4) |"
 echo "| … inverted cells (negative volume), worst | $(cell rbm written 5) | $(cell laplacian written 5) |"
-echo "| checkMesh after each of the first $motionSteps steps (moveDynamicMesh): Mesh OK | $(cell rbm steps 2) | $(cell laplacian steps 2) |"
+echo "| … max non-orthogonality at the last time (initial mesh: 27.0900°) | $(cell rbm last) | $(cell laplacian last) |"
+echo "| checkMesh after each of the first $motionSteps steps (moveDynamicMesh): Mesh OK / steps | $(cell rbm steps 2) / $(cell rbm steps 1) | $(cell laplacian steps 2) / $(cell laplacian steps 1) |"
 echo "| … first step failing | $(cell rbm steps 6) | $(cell laplacian steps 6) |"
 echo "| … worst max non-orthogonality | $(cell rbm steps 3) | $(cell laplacian steps 3) |"
 echo "| … inverted cells (negative volume), worst | $(cell rbm steps 5) | $(cell laplacian steps 5) |"
@@ -205,11 +208,21 @@ for k in $(seq 1 10); do
      printf "| %g | %.2f | %.4f | %s | %s |\n", t, 10*sin(2*pi*t), 0.05*sin(2*pi*t), r, l}'
 done
 
+if [[ -n $plugin ]]; then
+  echo
+  join <(coeff rbm | awk '$1 >= 0.01 {printf "%.6f %s\n", $1, $2}') \
+       <(coeff laplacian | awk '$1 >= 0.01 {printf "%.6f %s\n", $1, $2}') |
+    awk '{d=$2-$3; if (d<0) d=-d; if (d>m) {m=d; t=$1}; n++}
+         END{printf "Largest |Cl(rbm) − Cl(displacementLaplacian)| from t = 0.01 on (%d steps): %.2g at t = %g.\n", n, m, t}'
+fi
+
 if command -v gnuplot >/dev/null; then
   plots=""
   for m in "${motions[@]}"; do
     coeff "$m" | awk '$1 >= 0.01' > "$work/$m.cl"
-    [[ -s $work/$m.cl ]] && plots+="${plots:+, }'$work/$m.cl' using 1:2 with lines lw 2 title '$m'"
+    style="with lines lw 2"
+    [[ $m == laplacian ]] && style="with linespoints lw 1 pt 6 pointinterval 25"
+    [[ -s $work/$m.cl ]] && plots+="${plots:+, }'$work/$m.cl' using 1:2 $style title '$m'"
   done
   if [[ -n $plots ]]; then
     gnuplot <<GNUPLOT && echo && echo "Plot (from t = 0.01, after the impulsive start): $work/lift.png"
@@ -218,6 +231,7 @@ set output '$work/lift.png'
 set xlabel 't (s)'
 set ylabel 'Cl'
 set grid
+set title 'naca4415PitchingFlow: lift coefficient, α = 10° sin(2πt), h = 0.05 sin(2πt)'
 plot $plots
 GNUPLOT
   fi
