@@ -40,6 +40,7 @@ struct MotionSolveReport {
     std::string reason;          // PETSc's converged/diverged reason, or the iteration's
     Label invertedCellCount = 0; // cells with non-positive volume (3D) or area (2D) in curPoints()
     double worstQuality = 0.0;   // smallest cell quality (2D: q / F_shape; 3D: smallest pyramid ratio)
+    Label untangledCellCount = 0; // inverted cells the solver's untangling stage repaired (rigidBodyMotionSolver)
     double wallSeconds = 0.0;
 };
 

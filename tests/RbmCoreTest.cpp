@@ -1071,6 +1071,158 @@ TEST(SlidingNodes, StayOnTheirPlaneAndNewtonAndLocalGlobalAgree)
     }
 }
 
+// Line nodes: a box (5 × 5 × 4 nodes, turned by `frame`) whose faces x = 0 and y = 0 are
+// sliding planes; the nodes of their common edge (i = j = 0, inner k) slide on the line
+// where both planes meet, the other boundary nodes are prescribed.
+struct LineCase {
+    TestMesh mesh;
+    std::unique_ptr<RbmProblem> problem;
+    Vector3 normalX, normalY, direction;  // the two planes' unit normals and the line's direction
+    std::vector<int> lineNodes;
+};
+
+LineCase lineCase(EdgeWeighting weighting)
+{
+    LineCase c;
+    c.mesh = structuredGrid(5, 5, 4, 1.0, {0.0, 0.0, 0.0});
+    const Matrix3 frame = rotationFromVector({0.3, -0.5, 0.2});
+    c.normalX = frame * Vector3{1.0, 0.0, 0.0};
+    c.normalY = frame * Vector3{0.0, 1.0, 0.0};
+    c.direction = frame * Vector3{0.0, 0.0, 1.0};
+    std::vector<NodeConstraint> constraints = prescribeBoundary(c.mesh);
+    for (std::size_t node = 0; node < c.mesh.points.size(); ++node) {
+        const auto [i, j, k] = c.mesh.gridIndex[node];
+        if (k == 0 || k == 3) continue;
+        const bool onX = i == 0 && j > 0 && j < 4, onY = j == 0 && i > 0 && i < 4;
+        if (onX) constraints[node] = {NodeKind::sliding, 2.0 * c.normalX};
+        if (onY) constraints[node] = {NodeKind::sliding, c.normalY};
+        if (i == 0 && j == 0) {
+            // Any lengths, and a second normal not orthogonal to the first (the problem
+            // orthogonalises it).
+            constraints[node] = {NodeKind::sliding, 0.5 * c.normalX, false, 3.0 * c.normalY + c.normalX};
+            c.lineNodes.push_back(static_cast<int>(node));
+        }
+    }
+    for (Vector3& point : c.mesh.points) point = frame * point;
+    c.problem = std::make_unique<RbmProblem>(3, c.mesh.points, c.mesh.graph, constraints, weighting);
+    return c;
+}
+
+// Every variant plus the matrix-free linearized solve (its own projection code).
+std::vector<NamedFactory> allVariantsWithMatrixFree()
+{
+    std::vector<NamedFactory> variants = allVariants();
+    variants.push_back({"MatrixFreeLinearized",
+                        [](const RbmProblem& p) {
+                            CoupledLinearizedOptions options;
+                            options.linearSolver = LinearSolverKind::matrixFree;
+                            return std::make_unique<CoupledLinearizedSolver>(p, options);
+                        },
+                        false});
+    return variants;
+}
+
+TEST(LineNodes, FollowATranslationAlongTheLineWhileBothPlanesMove)
+{
+    // A rigid translation along the line (and across both planes: the planes themselves
+    // move, which the line nodes' offsets c n + c' m̂ carry) is the exact minimiser (E = 0).
+    const LineCase c = lineCase(EdgeWeighting::inverseDistanceSquared);
+    ASSERT_EQ(c.lineNodes.size(), 2u);
+    for (int node : c.lineNodes) {
+        ASSERT_TRUE(c.problem->slidesOnLine(node));
+        EXPECT_NEAR(dot(c.problem->secondSlidingNormal(node), c.normalY), 1.0, 1e-15);
+    }
+    const Vector3 translation = 0.6 * c.direction + 0.25 * c.normalX - 0.15 * c.normalY;
+    const std::vector<Vector3> prescribed(c.mesh.points.size(), translation);
+    for (const NamedFactory& variant : allVariantsWithMatrixFree()) {
+        const RbmResult result = variant.make(*c.problem)->solve(prescribed);
+        EXPECT_TRUE(result.converged) << variant.name << ": " << result.reason;
+        double largest = 0.0;
+        for (const Vector3& u : result.displacement) largest = std::max(largest, norm(u - translation));
+        EXPECT_LT(largest, 1e-9) << variant.name;
+    }
+}
+
+TEST(LineNodes, StayOnBothPlanesAndAreAConstrainedMinimumAlongTheLine)
+{
+    // Non-rigid: the prescribed nodes are twisted about the line's direction and pushed
+    // along it, so the line nodes are pulled off both planes unless held; they must stay
+    // on both to rounding, and the energy must be stationary along the line (a central
+    // difference of E along d vanishes) while it is not across it (the constraint is active).
+    for (const EdgeWeighting weighting : {EdgeWeighting::uniform, EdgeWeighting::inverseDistanceSquared}) {
+        const LineCase c = lineCase(weighting);
+        const Vector3 centre = c.mesh.points[c.lineNodes[0]];
+        std::vector<Vector3> prescribed(c.mesh.points.size());
+        for (int node = 0; node < c.problem->nodeCount(); ++node) {
+            const Vector3 x = c.mesh.points[node] - centre;
+            const double height = dot(x, c.direction);
+            prescribed[node] = rotationFromVector(0.15 * height * c.direction) * x - x + 0.1 * height * c.direction +
+                               0.2 * dot(x, c.normalX) * c.normalY;
+            if (c.problem->kind(node) == NodeKind::sliding) prescribed[node] = {};  // the planes stay
+        }
+        for (const NamedFactory& variant : allVariantsWithMatrixFree()) {
+            const RbmResult result = variant.make(*c.problem)->solve(prescribed);
+            ASSERT_TRUE(result.converged) << variant.name << ": " << result.reason;
+            double alongLine = 0.0;
+            for (int node : c.lineNodes) {
+                const Vector3& u = result.displacement[node];
+                EXPECT_LT(std::abs(dot(u, c.normalX)), 1e-12) << variant.name;
+                EXPECT_LT(std::abs(dot(u, c.normalY)), 1e-12) << variant.name;
+                alongLine = std::max(alongLine, std::abs(dot(u, c.direction)));
+            }
+            EXPECT_GT(alongLine, 1e-3) << variant.name << ": the line nodes do move along their line";
+            if (!variant.nonlinear || std::string(variant.name) == "DecoupledNonlinear") continue;
+            // Coupled nonlinear minimisers: ∂E/∂s along d is zero, across (n_x) it is not.
+            const RbmEnergy energy(*c.problem, RotationModel::exact, prescribed);
+            std::vector<double> unknowns(c.problem->unknownCount());
+            packUnknowns(*c.problem, result, unknowns);
+            const double h = 1e-6;
+            auto slope = [&](int node, const Vector3& direction) {
+                std::vector<double> plus(unknowns), minus(unknowns);
+                const int a = c.problem->unknownIndex()[node];
+                for (int q = 0; q < 3; ++q) {
+                    plus[6 * a + q] += h * direction[q];
+                    minus[6 * a + q] -= h * direction[q];
+                }
+                return (energy.value(plus) - energy.value(minus)) / (2.0 * h);
+            };
+            double across = 0.0;
+            for (int node : c.lineNodes) {
+                EXPECT_LT(std::abs(slope(node, c.direction)), 1e-6 * result.energy) << variant.name;
+                across = std::max(across, std::abs(slope(node, c.normalX)));
+            }
+            EXPECT_GT(across, 1e-2 * result.energy) << variant.name;
+        }
+    }
+}
+
+TEST(LineNodes, ProjectionsAreTheProjectorOntoTheLine)
+{
+    // projectSliding and projectSlidingBlocks apply P = d dᵀ to a line node's displacement:
+    // P v = (v·d) d, and the block form keeps P H P + s (I − P) symmetric positive definite.
+    const LineCase c = lineCase(EdgeWeighting::uniform);
+    const int a = c.problem->unknownIndex()[c.lineNodes[0]];
+    std::vector<double> vector(c.problem->unknownCount(), 0.0);
+    const Vector3 v{0.3, -1.1, 0.7};
+    for (int q = 0; q < 3; ++q) vector[6 * a + q] = v[q];
+    c.problem->projectSliding(vector);
+    for (int q = 0; q < 3; ++q) EXPECT_NEAR(vector[6 * a + q], dot(v, c.direction) * c.direction[q], 1e-15);
+    const RbmEnergy energy(*c.problem, RotationModel::smallAngle, std::vector<Vector3>(c.mesh.points.size()));
+    std::vector<double> blocks(static_cast<std::size_t>(c.problem->blockPattern().blockCount()) * 36);
+    energy.hessian(std::vector<double>(c.problem->unknownCount(), 0.0), blocks);
+    c.problem->projectSlidingBlocks(blocks, 6);
+    const DenseMatrix dense = denseFromBlocks(*c.problem, blocks, 6);
+    EXPECT_TRUE(choleskySucceeds(dense));
+    // (P H P)(n_x at node a) = s n_x: the row block of node a maps the normals onto themselves.
+    for (int r = 0; r < static_cast<int>(dense.size()); ++r) {
+        double product = 0.0;
+        for (int q = 0; q < 3; ++q) product += dense[r][6 * a + q] * c.normalY[q];
+        if (r / 6 != a || r % 6 >= 3) {
+            EXPECT_NEAR(product, 0.0, 1e-12) << r;
+        }
+    }
+}
+
 // ---------------------------------------------------------------------------------------
 // Rigid motion modes (the near null space handed to GAMG)
 

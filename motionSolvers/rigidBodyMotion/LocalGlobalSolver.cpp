@@ -247,10 +247,7 @@ double LaggedRotationIteration::residualNorm(std::span<const Vector3> displaceme
         for (int position = pattern.rowOffsets[a]; position < pattern.rowOffsets[a + 1]; ++position)
             r += laplacian_[position] * displacement[problem_.unknownNodes()[pattern.columns[position]]];
         const int node = problem_.unknownNodes()[a];
-        if (problem_.kind(node) == NodeKind::sliding) {
-            const Vector3& n = problem_.slidingNormal(node);
-            r -= dot(r, n) * n;
-        }
+        if (problem_.kind(node) == NodeKind::sliding) r -= problem_.slidingNormalPart(node, r);
         if (dim == 2) r.z = 0.0;
         rowSquares[a] = normSquared(r);
     }
@@ -420,10 +417,8 @@ RbmResult LaggedRotationIteration::run(std::span<const Vector3> prescribedDispla
         for (int a = 0; a < m; ++a) {
             Vector3 guess = initialGuess->displacement[nodes[a]];
             if (dim == 2) guess.z = 0.0;
-            if (problem_.kind(nodes[a]) == NodeKind::sliding) {
-                const Vector3& normal = problem_.slidingNormal(nodes[a]);
-                guess = offset[a] + (guess - dot(guess, normal) * normal);
-            }
+            if (problem_.kind(nodes[a]) == NodeKind::sliding)
+                guess = offset[a] + (guess - problem_.slidingNormalPart(nodes[a], guess));
             u[nodes[a]] = guess;
         }
     } else {
@@ -455,10 +450,8 @@ RbmResult LaggedRotationIteration::run(std::span<const Vector3> prescribedDispla
         for (int a = 0; a < m; ++a) {
             Vector3& value = displacement[nodes[a]];
             for (int q = 0; q < dim; ++q) value[q] = flat[static_cast<std::size_t>(a) * dim + q];
-            if (problem_.kind(nodes[a]) == NodeKind::sliding) {  // back onto the plane exactly
-                const Vector3& normal = problem_.slidingNormal(nodes[a]);
-                value -= (dot(value, normal) - dot(offset[a], normal)) * normal;
-            }
+            if (problem_.kind(nodes[a]) == NodeKind::sliding)  // back onto the plane (line) exactly
+                value -= problem_.slidingNormalPart(nodes[a], value - offset[a]);
         }
     };
     // Per-edge terms computed by the threads, summed in edge order (the same sum for any

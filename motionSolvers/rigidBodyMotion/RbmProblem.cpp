@@ -103,6 +103,7 @@ void RbmProblem::build()
 
     // Sliding normals.
     unitNormals_.assign(n, Vector3{});
+    secondUnitNormals_.assign(n, Vector3{});
     slidingNodeCount_ = 0;
     for (int node = 0; node < n; ++node) {
         if (constraints_[node].kind != NodeKind::sliding) continue;
@@ -114,6 +115,19 @@ void RbmProblem::build()
                                         " has a zero or invalid plane normal");
         unitNormals_[node] = normal / length;
         ++slidingNodeCount_;
+        const Vector3& second = constraints_[node].secondNormal;
+        if (second == Vector3{}) continue;
+        if (dimension_ == 2)
+            throw std::invalid_argument("RBM problem: sliding node " + std::to_string(node) +
+                                        " has a second plane in 2D (two lines meet in a point: hold it)");
+        // Gram–Schmidt: m̂ ⟂ n, so that P = I − n nᵀ − m̂ m̂ᵀ is the projector onto the line.
+        const double secondLength = norm(second);
+        const Vector3 m = second / secondLength - dot(second / secondLength, unitNormals_[node]) * unitNormals_[node];
+        const double orthogonal = norm(m);
+        if (!(secondLength > 0.0) || !std::isfinite(secondLength) || !(orthogonal > 1e-6))
+            throw std::invalid_argument("RBM problem: sliding node " + std::to_string(node) +
+                                        " has a second plane normal that is invalid or parallel to the first");
+        secondUnitNormals_[node] = m / orthogonal;
     }
 
     // Unknown numbering.
@@ -269,11 +283,14 @@ void RbmProblem::projectSliding(std::span<double> blockVector, int bs) const
     for (int a = 0; a < unknownNodeCount(); ++a) {
         const int node = unknownNodes_[a];
         if (constraints_[node].kind != NodeKind::sliding) continue;
-        const Vector3& n = unitNormals_[node];
         double* u = blockVector.data() + static_cast<std::size_t>(a) * bs;
-        double normalPart = 0.0;
-        for (int k = 0; k < dimension_; ++k) normalPart += u[k] * n[k];
-        for (int k = 0; k < dimension_; ++k) u[k] -= normalPart * n[k];
+        for (const Vector3* normal : {&unitNormals_[node], &secondUnitNormals_[node]}) {
+            const Vector3& n = *normal;  // orthonormal, so removing one after the other is P
+            double normalPart = 0.0;
+            for (int k = 0; k < dimension_; ++k) normalPart += u[k] * n[k];
+            for (int k = 0; k < dimension_; ++k) u[k] -= normalPart * n[k];
+        }
+        const Vector3& n = unitNormals_[node];
         if (hasRotations && rotatesAboutNormalOnly(node)) {
             double* omega = u + 3;
             double along = 0.0;
@@ -291,11 +308,10 @@ void RbmProblem::slidingOffset(std::span<const Vector3> prescribedDisplacement, 
     for (int a = 0; a < unknownNodeCount(); ++a) {
         const int node = unknownNodes_[a];
         if (constraints_[node].kind != NodeKind::sliding) continue;
-        const Vector3& n = unitNormals_[node];
         Vector3 given = prescribedDisplacement[node];
         if (dimension_ == 2) given.z = 0.0;
-        const double c = dot(n, given);
-        for (int k = 0; k < dimension_; ++k) blockVector[static_cast<std::size_t>(a) * bs + k] = c * n[k];
+        const Vector3 offset = slidingNormalPart(node, given);  // c n (+ c' m̂ on a line)
+        for (int k = 0; k < dimension_; ++k) blockVector[static_cast<std::size_t>(a) * bs + k] = offset[k];
     }
 }
 
@@ -310,14 +326,18 @@ void RbmProblem::projectSlidingBlocks(std::span<double> blockValues, int bs) con
     // project(v) applies P to a strided vector of bs entries.
     struct NodeProjector {
         const Vector3* normal = nullptr;
+        const Vector3* second = nullptr;  // line nodes: m̂ (zero vector otherwise, removing nothing)
         bool rotationToo = false;
         void apply(double* v, int stride) const
         {
-            const Vector3& n = *normal;
-            double normalPart = 0.0;
-            for (int q = 0; q < 3; ++q) normalPart += n[q] * v[q * stride];
-            for (int q = 0; q < 3; ++q) v[q * stride] -= normalPart * n[q];
+            for (const Vector3* plane : {normal, second}) {
+                const Vector3& n = *plane;
+                double normalPart = 0.0;
+                for (int q = 0; q < 3; ++q) normalPart += n[q] * v[q * stride];
+                for (int q = 0; q < 3; ++q) v[q * stride] -= normalPart * n[q];
+            }
             if (!rotationToo) return;
+            const Vector3& n = *normal;
             double along = 0.0;
             for (int q = 0; q < 3; ++q) along += n[q] * v[(3 + q) * stride];
             for (int q = 0; q < 3; ++q) v[(3 + q) * stride] = along * n[q];
@@ -328,6 +348,7 @@ void RbmProblem::projectSlidingBlocks(std::span<double> blockValues, int bs) con
         NodeProjector projector;
         if (constraints_[node].kind != NodeKind::sliding) return projector;
         projector.normal = &unitNormals_[node];
+        projector.second = &secondUnitNormals_[node];
         projector.rotationToo = hasRotations && rotatesAboutNormalOnly(node);
         return projector;
     };
@@ -367,8 +388,10 @@ void RbmProblem::projectSlidingBlocks(std::span<double> blockValues, int bs) con
             }
             if (isDiagonal) {
                 const Vector3& n = *rowProjector.normal;
+                const Vector3& m = *rowProjector.second;  // s (I − P) = s (n nᵀ + m̂ m̂ᵀ)
                 for (int p = 0; p < dim; ++p)
-                    for (int q = 0; q < dim; ++q) block[p * bs + q] += displacementScale * n[p] * n[q];
+                    for (int q = 0; q < dim; ++q)
+                        block[p * bs + q] += displacementScale * (n[p] * n[q] + m[p] * m[q]);
                 if (rowProjector.rotationToo)
                     for (int p = 0; p < 3; ++p)
                         for (int q = 0; q < 3; ++q)

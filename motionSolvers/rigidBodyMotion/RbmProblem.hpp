@@ -16,6 +16,13 @@
 // Sliding nodes: the displacement is confined to a plane, u·n = c, with n the node's unit
 // normal and c = n·(the displacement given for that node in the prescribed-displacement
 // array). In 2D the "plane" is a line. The rotation stays free.
+// Line nodes (3D only): a sliding node with a second normal m lies on two planes and moves
+// along their intersection line, u = c n + c' m̂ + (u·d) d with d = n × m̂ and m̂ the unit
+// part of m normal to n (Gram–Schmidt), c' = m̂·(given displacement). Every projection
+// below removes both normal components (P = I − n nᵀ − m̂ m̂ᵀ = d dᵀ). A node on two mirror
+// planes would have to keep a zero rotation (a rotation vector is mirrored into −R ω by
+// each plane, only ω = 0 is invariant under two); the core does not impose that: a line
+// node's rotation stays free and `mirror` is ignored for it.
 //
 // 2D problems use x and y of the points; z is ignored and z displacements are zero.
 
@@ -41,6 +48,9 @@ struct NodeConstraint {
     NodeKind kind = NodeKind::free;
     Vector3 normal{};  // sliding only: normal of the plane (need not be unit length; 2D uses x, y)
     bool mirror = false;  // sliding only: a mirror (symmetry) plane; in 3D the rotation is held to the normal
+    // Sliding only, 3D only: the normal of a second plane (zero: none). Nonzero makes the node
+    // slide on the line where both planes meet (see the header comment).
+    Vector3 secondNormal{};
 };
 
 // Edge weights w_ij (DESIGN.md §1): the thesis uses uniform; 1/|d|² makes every
@@ -72,7 +82,7 @@ struct BlockPattern {
 class RbmProblem {
 public:
     // Throws std::invalid_argument for: dimension not 2 or 3, sizes that do not match the
-    // graph, a sliding node with a zero normal, two neighbours at the same position, an
+    // graph, a sliding node with a zero normal, a second normal in 2D or parallel to the first, two neighbours at the same position, an
     // unknown node without neighbours, or a group of connected unknown nodes that no
     // prescribed node holds (its motion would be undetermined).
     RbmProblem(int dimension, std::vector<Vector3> referencePoints, std::shared_ptr<const CellNeighbourGraph> graph,
@@ -112,11 +122,24 @@ public:
     const std::vector<double>& edgeWeightFactors() const { return edgeWeightFactors_; }
     // Unit normal of a sliding node (zero vector for other nodes), in the problem's dimension.
     const Vector3& slidingNormal(int node) const { return unitNormals_[node]; }
-    // True for a sliding node on a mirror plane in 3D: its rotation vector must stay along
-    // slidingNormal(node) (see the header comment).
+    // Unit second normal m̂ of a line node, orthogonal to slidingNormal(node); zero for every
+    // other node.
+    const Vector3& secondSlidingNormal(int node) const { return secondUnitNormals_[node]; }
+    bool slidesOnLine(int node) const { return !(secondUnitNormals_[node] == Vector3{}); }
+    // The part of v that a sliding node may not change: (v·n) n (+ (v·m̂) m̂ on a line), zero
+    // for other nodes; v minus it is the admissible (tangential) part.
+    Vector3 slidingNormalPart(int node, const Vector3& v) const
+    {
+        const Vector3& n = unitNormals_[node];
+        const Vector3& m = secondUnitNormals_[node];
+        return dot(v, n) * n + dot(v, m) * m;
+    }
+    // True for a sliding node on a mirror plane in 3D (not on a line): its rotation vector
+    // must stay along slidingNormal(node) (see the header comment).
     bool rotatesAboutNormalOnly(int node) const
     {
-        return dimension_ == 3 && constraints_[node].kind == NodeKind::sliding && constraints_[node].mirror;
+        return dimension_ == 3 && constraints_[node].kind == NodeKind::sliding && constraints_[node].mirror &&
+               !slidesOnLine(node);
     }
 
     // Node → unknown index (−1 for prescribed nodes) and unknown index → node.
@@ -138,7 +161,8 @@ public:
     // Sliding constraint in the unknown space. A block vector has blockSize entries per
     // unknown node with the displacement first (blockSize() for the coupled unknowns,
     // dimension() for displacement-only systems). projectSliding removes the normal
-    // component of every sliding node's displacement (P = I − n nᵀ) and, when the vector
+    // component of every sliding node's displacement (P = I − n nᵀ; on a line
+    // P = I − n nᵀ − m̂ m̂ᵀ) and, when the vector
     // holds rotations (blockSize == blockSize()), the in-plane components of a mirror node's
     // rotation (P = n nᵀ there); other rotations and free nodes are untouched.
     void projectSliding(std::span<double> blockVector, int blockSize) const;
@@ -174,6 +198,7 @@ private:
     std::vector<double> edgeWeights_;
     std::vector<double> edgeWeightFactors_;
     std::vector<Vector3> unitNormals_;
+    std::vector<Vector3> secondUnitNormals_;
     std::vector<int> unknownIndex_;
     std::vector<int> unknownNodes_;
     BlockPattern blockPattern_;

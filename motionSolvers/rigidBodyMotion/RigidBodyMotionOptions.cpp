@@ -176,7 +176,7 @@ const std::vector<std::string_view>& RigidBodyMotionOptions::keywords()
     static const std::vector<std::string_view> words{
         "coupling",  "formulation",   "algorithm",         "weighting",     "subSteps",
         "maxSubStepSplits", "maxSubSteps", "tolerance", "relativeTolerance", "maxIterations",
-        "linearSolver", "petscOptions", "stiffening"};
+        "linearSolver", "petscOptions", "stiffening", "untangle"};
     return words;
 }
 
@@ -197,6 +197,7 @@ std::string RigidBodyMotionOptions::describe() const
         for (std::size_t k = 0; k < stiffening.patches.size(); ++k) text << (k ? " " : "") << stiffening.patches[k];
         text << ')';
     }
+    if (!untangle) text << ", untangle off";
     return text.str();
 }
 
@@ -267,6 +268,8 @@ RigidBodyMotionOptions RigidBodyMotionOptions::read(const io::Dictionary& coeffi
             }
         } else if (keyword == "stiffening") {
             options.stiffening = readStiffening(entry);
+        } else if (keyword == "untangle") {
+            options.untangle = readChoice(entry, {"on", "off"}) == "on";
         }
     }
     return options;

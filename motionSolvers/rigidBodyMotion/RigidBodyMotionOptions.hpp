@@ -20,6 +20,7 @@
 //         petscOptions      "-ksp_type cg -pc_type gamg";
 //         stiffening        quadratic inverseDistance (airfoil);   // or: inverseDistance (a b);
 //                                                 //     power 0.8 inverseDistance (a b); none
+//         untangle          on;                   // on | off: repair cells the solve left inverted
 //     }
 //
 // Unknown keywords are errors that name the file and line and list the valid keywords (a
@@ -76,6 +77,7 @@ struct RigidBodyMotionOptions {
     std::string petscOptions;                                        // as written
     std::vector<std::pair<std::string, std::string>> petscOptionList;  // (name, value or ""), parsed
     StiffeningOptions stiffening;
+    bool untangle = true;              // untangling stage after a solve that left inverted cells (src/Untangling.hpp)
     std::string file;                  // the dictionary's file, for later errors
 
     bool automaticSubSteps() const { return subSteps == 0; }

@@ -12,6 +12,7 @@
 #include "PointPatchDisplacement.hpp"
 #include "PseudoTwoDExtraction.hpp"
 #include "RbmEnergy.hpp"
+#include "RbmUntangling.hpp"
 #include "ReducedNewtonSolver.hpp"
 #include "Stiffening.hpp"
 #include "SubStepping.hpp"
@@ -292,7 +293,13 @@ struct RigidBodyMotionSolver::Impl {
     std::unique_ptr<RbmSolver> makeSolver(const RbmProblem& forProblem) const;
     std::unique_ptr<RbmProblem> problemAround(std::vector<Vector3> points) const;
 
-    Label countInverted(std::span<const Vector3> nodeDisplacement, double* worstQuality = nullptr);
+    // invertedCells (optional) receives the labels of the inverted cells (2D: planar cells).
+    Label countInverted(std::span<const Vector3> nodeDisplacement, double* worstQuality = nullptr,
+                        std::vector<Label>* invertedCells = nullptr);
+    // The untangling stage (src/Untangling.hpp): when state leaves inverted cells that the
+    // initial mesh did not have, moves the points around them until none is; the reason tells.
+    void untangleState(MotionSolveReport& report);
+    std::unique_ptr<SimplexDecomposition> simplices;  // built at the first untangling
     void writeBack();
 
     void solveOnInitialMesh(std::span<const Vector3> target, MotionSolveReport& report);
@@ -391,8 +398,14 @@ void RigidBodyMotionSolver::Impl::updateProblem()
                 constraint = {NodeKind::sliding, normal, condition.isMirrorPlane()};
             } else if (norm(cross(constraint.normal, normal)) <= 1e-6) {
                 constraint.mirror = constraint.mirror || condition.isMirrorPlane();  // a mirror on the same plane
+            } else if (!twoD && constraint.secondNormal == Vector3{}) {
+                // Two different planes (3D): the node slides along their intersection line.
+                constraint.secondNormal = normal;
+            } else if (!twoD && std::abs(dot(normal, cross(constraint.normal, constraint.secondNormal))) <= 1e-6 *
+                                    norm(cross(constraint.normal, constraint.secondNormal))) {
+                // A further plane through the same line (its normal ⟂ the line): still that line.
             } else {
-                // Two different planes: one plane per node is all the core offers, so hold it.
+                // Two lines in 2D meet in a point, so do three planes in 3D: the node stays.
                 constraint = {NodeKind::prescribed, {}};
                 prescriber[node] = heldNode;
             }
@@ -409,6 +422,7 @@ void RigidBodyMotionSolver::Impl::updateProblem()
     bool changed = !problem || classes.size() != constraints.size();
     for (int node = 0; !changed && node < n; ++node)
         changed = classes[node].kind != constraints[node].kind || !(classes[node].normal == constraints[node].normal) ||
+                  !(classes[node].secondNormal == constraints[node].secondNormal) ||
                   classes[node].mirror != constraints[node].mirror ||
                   prescriber[node] != prescribingPatch[node];
     if (!changed) return;
@@ -527,8 +541,10 @@ std::unique_ptr<RbmSolver> RigidBodyMotionSolver::Impl::makeSolver(const RbmProb
     return std::make_unique<CoupledNewtonSolver>(forProblem, newton);
 }
 
-Label RigidBodyMotionSolver::Impl::countInverted(std::span<const Vector3> nodeDisplacement, double* worstQuality)
+Label RigidBodyMotionSolver::Impl::countInverted(std::span<const Vector3> nodeDisplacement, double* worstQuality,
+                                                std::vector<Label>* invertedCells)
 {
+    if (invertedCells) invertedCells->clear();
     double worst = std::numeric_limits<double>::infinity();
     Label inverted = 0;
     if (twoD) {
@@ -540,7 +556,10 @@ Label RigidBodyMotionSolver::Impl::countInverted(std::span<const Vector3> nodeDi
             positions[node].y += nodeDisplacement[node].y;
         }
         for (Label c = 0; c < planar.cellCount(); ++c) {
-            if (planar.signedArea(c, positions) <= 0.0) ++inverted;
+            if (planar.signedArea(c, positions) <= 0.0) {
+                ++inverted;
+                if (invertedCells) invertedCells->push_back(c);
+            }
             if (!worstQuality) continue;
             const auto cell = planar.cell(c);
             if (cell.size() == 3)
@@ -575,7 +594,10 @@ Label RigidBodyMotionSolver::Impl::countInverted(std::span<const Vector3> nodeDi
         }
         for (std::size_t c = 0; c < cellCount; ++c) {
             const double volume = geometry.cellVolumes[c];
-            if (smallestPyramid[c] <= 0.0 || volume <= 0.0) ++inverted;
+            if (smallestPyramid[c] <= 0.0 || volume <= 0.0) {
+                ++inverted;
+                if (invertedCells) invertedCells->push_back(static_cast<Label>(c));
+            }
             // Smallest pyramid relative to the mean pyramid V / faces: 1 for a cube, ≤ 0 when inverted.
             if (worstQuality && std::abs(volume) > 0.0)
                 worst = std::min(worst, smallestPyramid[c] * faceCounts[c] / std::abs(volume));
@@ -583,6 +605,42 @@ Label RigidBodyMotionSolver::Impl::countInverted(std::span<const Vector3> nodeDi
     }
     if (worstQuality) *worstQuality = std::isfinite(worst) ? worst : 1.0;
     return inverted;
+}
+
+void RigidBodyMotionSolver::Impl::untangleState(MotionSolveReport& report)
+{
+    // Only cells the solve inverted: an initial mesh that is already inverted is the user's.
+    if (!options.untangle || initialInverted > 0 || countInverted(state.displacement) == 0) return;
+    if (!simplices)
+        simplices = std::make_unique<SimplexDecomposition>(twoD ? decomposeCells(twoD->planar)
+                                                                : decomposeCells(owner.mesh()));
+    const int n = nodeCount();
+    std::vector<Vector3> moved(n);
+    for (int node = 0; node < n; ++node) moved[node] = referencePoints[node] + state.displacement[node];
+    std::vector<Vector3> displacement(n);
+    std::vector<Label> cells;
+    const InvertedCellTest test = [&](std::span<const Vector3> at) {
+        for (int node = 0; node < n; ++node) displacement[node] = at[node] - referencePoints[node];
+        countInverted(displacement, nullptr, &cells);
+        return cells;
+    };
+    const UntangleResult result = untangle(*simplices, referencePoints, untangleConstraints(*problem), moved, test);
+    // Only the free and sliding nodes moved: prescribed displacements stay bit-for-bit.
+    for (int node = 0; node < n; ++node)
+        if (problem->isUnknown(node)) state.displacement[node] = moved[node] - referencePoints[node];
+    report.untangledCellCount = result.initialInverted - static_cast<Label>(result.remainingCells.size());
+    if (result.untangled()) {
+        report.reason += "; untangled " + std::to_string(result.initialInverted) + " inverted cell" +
+                         (result.initialInverted == 1 ? "" : "s");
+        return;
+    }
+    std::string where = result.describe(moved, *simplices);
+    if (!result.remainingCells.empty()) {
+        const Label first = result.remainingCells.front();
+        const std::string patches = twoD ? cellPatchNames(twoD->planar, first) : cellPatchNames(owner.mesh(), first);
+        if (!patches.empty()) where += " (cell " + std::to_string(first) + ": " + patches + ")";
+    }
+    report.reason += "; untangling: " + where;
 }
 
 void RigidBodyMotionSolver::Impl::writeBack()
@@ -783,6 +841,7 @@ MotionSolveReport RigidBodyMotionSolver::solve()
         else impl.solveInIncrements(target, report);
         impl.hasState = true;
         impl.statePrescribed = target;
+        impl.untangleState(report);
     }
     impl.writeBack();
     report.invertedCellCount = impl.countInverted(impl.state.displacement, &report.worstQuality);

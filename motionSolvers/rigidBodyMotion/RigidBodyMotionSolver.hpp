@@ -10,10 +10,10 @@
 //    solved in 3D (6 unknowns per node, any cell type: the method only needs the
 //    cell-neighbour graph).
 //  - Node classes from the patch conditions of every point: prescribed beats sliding beats
-//    free. A point on two sliding patches with different normals is held where it is (the
-//    core's sliding constraint is one plane per node; in 2D two lines meet in a point). In
-//    2D, sliding normals are projected into the plane; a sliding patch parallel to the plane
-//    leaves its nodes free.
+//    free. A point on two sliding patches with different normals slides along the line where
+//    they meet (RbmProblem's line nodes); on three planes without a common line, or on two
+//    lines in 2D (they meet in a point), it is held where it is. In 2D, sliding normals are
+//    projected into the plane; a sliding patch parallel to the plane leaves its nodes free.
 //  - Time stepping (DESIGN.md §3). Every solve() is for the TOTAL displacement relative to
 //    points0. The nonlinear variants minimise the energy on the initial mesh, warm-started
 //    from the previous solve, with the graph, the weights and the PETSc objects kept alive

@@ -20,10 +20,7 @@ int automaticSubStepCount(const RbmProblem& problem, std::span<const Vector3> pr
         if (kind == NodeKind::free) continue;
         Vector3 displacement = prescribedDisplacement[node];
         if (problem.dimension() == 2) displacement.z = 0.0;
-        if (kind == NodeKind::sliding) {
-            const Vector3& normal = problem.slidingNormal(node);
-            displacement = dot(displacement, normal) * normal;
-        }
+        if (kind == NodeKind::sliding) displacement = problem.slidingNormalPart(node, displacement);
         const double length = norm(displacement);
         const double shortest = problem.shortestNeighbourDistance(node);
         if (length == 0.0 || !std::isfinite(shortest)) continue;
