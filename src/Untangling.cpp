@@ -188,9 +188,21 @@ SimplexDecomposition decomposeCells(const PlanarMesh& mesh)
         result.cornerOffsets.push_back(static_cast<Label>(result.cornerPoints.size()));
         result.cellOffsets.push_back(static_cast<Label>(result.cellPoints.size()));
     }
-    // Triangles (cell centre, p_k, p_k+1): polygons are counter-clockwise.
+    // Polygons are counter-clockwise. A triangle is its own simplex; a quadrilateral gives its
+    // four corner triangles (p_k−1, p_k, p_k+1), all positive exactly when it is convex, i.e.
+    // when every corner Jacobian and so its F_shape (thesis eq 2.99) is positive; other
+    // polygons give the triangles (cell centre, p_k, p_k+1).
     for (Label c = 0; c < mesh.cellCount(); ++c) {
         const auto cell = mesh.cell(c);
+        if (cell.size() == 3 || cell.size() == 4) {
+            const std::size_t size = cell.size();
+            for (std::size_t k = 0; k < (size == 3 ? 1 : 4); ++k) {
+                for (Label corner : {cell[(k + size - 1) % size], cell[k], cell[(k + 1) % size]})
+                    result.simplexCorners.push_back(corner);
+                result.simplexCell.push_back(c);
+            }
+            continue;
+        }
         for (std::size_t k = 0; k < cell.size(); ++k) {
             for (Label corner : {points + c, cell[k], cell[(k + 1) % cell.size()]}) result.simplexCorners.push_back(corner);
             result.simplexCell.push_back(c);

@@ -4,8 +4,9 @@
 // their plane or line). Pure geometry, no PETSc: the RBM solver calls it after a solve that
 // left inverted cells (issue 13.3), but any mesh motion could.
 //
-// Cells are split into simplices the way validity is judged: 2D, the triangles (cell centroid,
-// p_k, p_k+1) of every polygon edge; 3D, the tetrahedra (cell centroid, face centroid, p_k,
+// Cells are split into simplices the way validity is judged: 2D, a triangle itself, the four
+// corner triangles of a quadrilateral (positive exactly when it is convex: F_shape > 0), and the
+// triangles (cell centroid, p_k, p_k+1) of other polygons; 3D, the tetrahedra (cell centroid, face centroid, p_k,
 // p_k+1) of every face edge, with centroids the plain means of the points. All simplices
 // positive implies a positive polygon area (2D) and positive face pyramids about the cell
 // centre (3D, up to the difference between OpenFOAM's area-weighted centres and point means),
@@ -22,8 +23,10 @@
 // positive, of its cell's mean simplex): the untangled cells keep a fraction of their shape.
 //
 // Region: the inverted cells grown by `layers` layers of point-neighbour cells; its points
-// move, every simplex touching them counts, so cells outside cannot be inverted by it. When a
-// round of sweeps does not untangle, the region is grown (layers doubled) up to maxRounds.
+// move, and every simplex touching them is in the objective (a valid cell next to the region
+// is not given up for an inverted one without paying for it); success is judged on the whole
+// mesh by the caller's test. When a round of sweeps does not untangle, the region is grown
+// (layers doubled) up to maxRounds.
 
 #include "PlanarMesh.hpp"
 #include "PolyMesh.hpp"

@@ -1093,7 +1093,7 @@ TEST(RigidBodyMotionSolverSubSteps, DISABLED_MeasureSingleStepFailures)
                                            {{0, 0, 1}, 0.0, {100.0, 100.0, 0.0}, {55.0, 25.0, 0.0}},
                                            {{0, 0, 1}, degrees(30.0), {100.0, 100.0, 0.0}, {40.0, 0.0, 0.0}}};
     for (const RigidMotion& motion : motions) {
-        for (const std::string weighting : {"weighting uniform;", ""}) {
+        for (const std::string weighting : {"weighting uniform; untangle off;", "weighting uniform;", "untangle off;", ""}) {
             for (const std::string variant :
                  {"formulation linearized; subSteps 1;", "formulation linearized; maxSubStepSplits 0;",
                   "formulation linearized;", "formulation linearized; maxSubSteps 1;", "subSteps 1;", "",
@@ -1131,6 +1131,17 @@ TEST(RigidBodyMotionSolverSubSteps, AutomaticCountMakesAnInvertingSingleStepVali
     EXPECT_TRUE(automatic.converged) << automatic.reason;
 }
 
+// One solve of `mesh` with its "inner" patch moved by `motion`: the report and the points.
+std::pair<MotionSolveReport, std::vector<Vector3>> moveInner(const PolyMesh& mesh, const RigidMotion& motion,
+                                                             const std::string& coefficients)
+{
+    auto solver = makeSolver(mesh, coefficients);
+    solver->setPatchDisplacement("inner",
+                                 patchDisplacement(*solver, "inner", [&](const Vector3& x) { return motion.displacement(x); }));
+    MotionSolveReport report = solver->solve();
+    return {report, solver->curPoints()};
+}
+
 TEST(RigidBodyMotionSolverSubSteps, SubStepThatInvertsCellsIsHalvedAndRetried)
 {
     // Linearized, inner square turned by 55°, the automatic count capped at one step: that
@@ -1138,12 +1149,8 @@ TEST(RigidBodyMotionSolverSubSteps, SubStepThatInvertsCellsIsHalvedAndRetried)
     const PolyMesh mesh = squaresMesh(20, 4, 10.0);
     const RigidMotion turn{{0, 0, 1}, degrees(55.0), {100.0, 100.0, 0.0}, {}};
     auto run = [&](const std::string& coefficients) {
-        auto solver = makeSolver(mesh, coefficients);
-        solver->setPatchDisplacement("inner",
-                                     patchDisplacement(*solver, "inner", [&](const Vector3& x) { return turn.displacement(x); }));
-        MotionSolveReport report = solver->solve();
+        const auto [report, points] = moveInner(mesh, turn, coefficients);
         // The patch ends exactly where the host put it.
-        const std::vector<Vector3> points = solver->curPoints();
         for (Label p : patchMeshPoints(mesh, mesh.findPatch("inner"))) EXPECT_LT(norm(points[p] - turn.apply(mesh.points[p])), 1e-9);
         return report;
     };
@@ -1159,6 +1166,60 @@ TEST(RigidBodyMotionSolverSubSteps, SubStepThatInvertsCellsIsHalvedAndRetried)
     const MotionSolveReport explicitOne = run("formulation linearized; subSteps 1; untangle off;");
     EXPECT_EQ(explicitOne.subStepCount, 1);
     EXPECT_EQ(explicitOne.invertedCellCount, 4);
+}
+
+TEST(RigidBodyMotionSolverUntangling, RepairsTheInvertingSingleLinearizedStepIn2D)
+{
+    // The 55° single linearized step above inverts 4 cells; the untangling stage (on by
+    // default) repairs them in 2D without touching a prescribed point.
+    const PolyMesh mesh = squaresMesh(20, 4, 10.0);
+    const RigidMotion turn{{0, 0, 1}, degrees(55.0), {100.0, 100.0, 0.0}, {}};
+    const auto [plain, plainPoints] = moveInner(mesh, turn, "formulation linearized; subSteps 1; untangle off;");
+    const auto [repaired, points] = moveInner(mesh, turn, "formulation linearized; subSteps 1;");
+    EXPECT_EQ(plain.invertedCellCount, 4);
+    EXPECT_EQ(repaired.invertedCellCount, 0);
+    EXPECT_EQ(repaired.untangledCellCount, 4);
+    EXPECT_GT(repaired.worstQuality, 0.0);
+    for (const char* patch : {"inner", "outer"})
+        for (Label p : patchMeshPoints(mesh, mesh.findPatch(patch))) EXPECT_EQ(points[p], plainPoints[p]) << p;
+    EXPECT_GT(largestDistance(points, plainPoints), 1.0);  // spacing 10: the cells were moved
+    // Both planes of the pseudo-2D mesh moved alike (the stage works on the 2D nodes).
+    const Label front = nearestPoint(mesh, {100.0, 60.0, 0.0}), back = nearestPoint(mesh, {100.0, 60.0, 10.0});
+    EXPECT_EQ(points[front].x, points[back].x);
+    EXPECT_EQ(points[front].y, points[back].y);
+}
+
+// Issue 13.3's report: the cases that invert today, with and without the untangling stage
+// (inverted cells, worst quality, checkMesh max non-orthogonality, wall time).
+TEST(RigidBodyMotionSolverUntangling, DISABLED_MeasureRescuedCases)
+{
+    auto print = [](const std::string& name, const MotionSolver& solver, const MotionSolveReport& report) {
+        QualityEvaluator evaluator(solver.mesh());
+        const QualityReport quality = evaluator.evaluate(solver.curPoints());
+        std::printf("%-60s inverted %5d (QualityEvaluator %5d) untangled %5d worst %9.4f maxNonOrth %6.2f skew %7.3f "
+                    "%6.2f s  %s\n",
+                    name.c_str(), report.invertedCellCount, quality.invertedCellCount(), report.untangledCellCount,
+                    report.worstQuality, quality.checkMesh.maxNonOrthogonality, quality.checkMesh.maxSkewness,
+                    report.wallSeconds, report.reason.c_str());
+        std::fflush(stdout);
+    };
+    for (const std::string stage : {"untangle off;", ""}) {
+        for (const double angle : {4.0, 10.0}) {
+            auto solver = makeSolver(airfoilMesh(), "weighting uniform; subSteps 1; " + stage);
+            const AirfoilRun run = turnAirfoil(*solver, angle);
+            print("airfoil uniform " + std::to_string(angle) + " " + stage, *solver, run.report);
+        }
+        for (const double angle : {160.0, 170.0, 180.0, -150.0, -170.0}) {
+            auto solver = makeSolver(airfoilMesh(), "subSteps 1; " + stage);
+            const AirfoilRun run = turnAirfoil(*solver, angle);
+            print("airfoil default " + std::to_string(angle) + " " + stage, *solver, run.report);
+        }
+        for (const double angle : {100.0, 120.0}) {
+            auto solver = makeSolver(airfoilMesh(), "subSteps 1; formulation linearized; " + stage);
+            const AirfoilRun run = turnAirfoil(*solver, angle);
+            print("airfoil linearized " + std::to_string(angle) + " " + stage, *solver, run.report);
+        }
+    }
 }
 
 // ---------------------------------------------------------------------------------------
