@@ -290,27 +290,12 @@ UntangleResult untangle(const SimplexDecomposition& cells, std::span<const Vecto
     }
     invert(cells.cellOffsets, cells.cellPoints, pointCount, pointCellOffsets, pointCells);
 
-    // Targets α_s from the reference mesh.
+    // Targets α_s from the reference mesh. A simplex that is not positive there (a concave
+    // quadrilateral corner, a warped face's tetrahedron in the user's own mesh) is not asked
+    // to become positive: target 0 leaves it out of the objective.
     std::vector<double> target = simplexVolumes(cells, referencePositions);
-    {
-        std::vector<double> cellMean(static_cast<std::size_t>(cellCount), 0.0);
-        std::vector<int> cellPositive(static_cast<std::size_t>(cellCount), 0);
-        double globalSum = 0.0;
-        for (Label s = 0; s < simplexCount; ++s) {
-            globalSum += std::abs(target[s]);
-            if (target[s] > 0.0) {
-                cellMean[cells.simplexCell[s]] += target[s];
-                ++cellPositive[cells.simplexCell[s]];
-            }
-        }
-        const double globalMean = simplexCount > 0 ? globalSum / simplexCount : 1.0;
-        for (Label s = 0; s < simplexCount; ++s) {
-            const Label c = cells.simplexCell[s];
-            double reference = target[s];
-            if (!(reference > 0.0)) reference = cellPositive[c] > 0 ? cellMean[c] / cellPositive[c] : globalMean;
-            target[s] = options.targetFraction * reference;
-        }
-    }
+    for (double& value : target) value = value > 0.0 ? options.targetFraction * value : 0.0;
+    const auto counts = [&](Label s) { return target[s] > 0.0; };
 
     std::vector<Vector3> corners(static_cast<std::size_t>(cornerCount));
     for (Label c = 0; c < cornerCount; ++c) corners[c] = cornerPosition(cells, positions, c);
@@ -325,6 +310,7 @@ UntangleResult untangle(const SimplexDecomposition& cells, std::span<const Vecto
             corner[j] = corners[cells.simplexCorners[static_cast<std::size_t>(s) * cornersPerSimplex + j]];
         const double v = simplexVolume(dimension, corner.data(), gradient);
         if (volume) *volume = v;
+        if (!counts(s)) return 0.0;
         const double shortfall = std::max(0.0, target[s] - v) / target[s];
         return shortfall * shortfall;
     };
@@ -343,7 +329,7 @@ UntangleResult untangle(const SimplexDecomposition& cells, std::span<const Vecto
         {
             const std::vector<double> volumes = simplexVolumes(cells, positions);
             for (Label s = 0; s < simplexCount; ++s)
-                if (!(volumes[s] > 0.0)) cellInRegion[cells.simplexCell[s]] = 1;
+                if (counts(s) && !(volumes[s] > 0.0)) cellInRegion[cells.simplexCell[s]] = 1;
         }
         for (int layer = 0; layer < layers; ++layer) {
             std::vector<char> grown(cellInRegion);
@@ -367,7 +353,8 @@ UntangleResult untangle(const SimplexDecomposition& cells, std::span<const Vecto
                 if (isMovable[p] && admissibleBasis(dimension, constraints[p], basis) > 0) movable.push_back(p);
         }
 
-        double previousTotal = std::numeric_limits<double>::infinity();
+        double best = std::numeric_limits<double>::infinity();
+        int sinceImprovement = 0;
         for (int sweep = 0; sweep < options.maxSweepsPerRound; ++sweep) {
             ++result.sweeps;
             double total = 0.0;
@@ -463,7 +450,7 @@ UntangleResult untangle(const SimplexDecomposition& cells, std::span<const Vecto
                     for (Label q = cornerSimplexOffsets[corner]; q < cornerSimplexOffsets[corner + 1]; ++q) {
                         double volume = 0.0;
                         penalty(cornerSimplices[q], nullptr, &volume);
-                        if (!(volume > 0.0)) {
+                        if (counts(cornerSimplices[q]) && !(volume > 0.0)) {
                             allPositive = false;
                             break;
                         }
@@ -474,9 +461,13 @@ UntangleResult untangle(const SimplexDecomposition& cells, std::span<const Vecto
                 inverted = isInverted(positions);
                 if (inverted.empty()) break;
             }
-            // Stagnation: this region cannot do better, grow it.
-            if (!(total < (1.0 - 1e-4) * previousTotal)) break;
-            previousTotal = total;
+            // Stagnation (less than 0.1 % in 10 sweeps): this region cannot do better, grow it.
+            if (total < (1.0 - 1e-3) * best) {
+                best = total;
+                sinceImprovement = 0;
+            } else if (++sinceImprovement >= 10) {
+                break;
+            }
         }
         inverted = isInverted(positions);
         layers *= 2;

@@ -19,8 +19,9 @@
 // Σ_s max(0, α_s − V_s)² / α_s² (the same minimisers, continuously differentiable), point by
 // point (Knupp's local optimisation: a Gauss–Newton step in the point's admissible
 // directions with backtracking), in a fixed order, so the result does not depend on threads.
-// α_s = targetFraction × the simplex's volume in the reference mesh (or, where that was not
-// positive, of its cell's mean simplex): the untangled cells keep a fraction of their shape.
+// α_s = targetFraction × the simplex's volume in the reference mesh: the untangled cells keep a
+// fraction of their shape. A simplex that is not positive in the reference mesh (a concave
+// corner the user's mesh already had) is left out.
 //
 // Region: the inverted cells grown by `layers` layers of point-neighbour cells; its points
 // move, and every simplex touching them is in the objective (a valid cell next to the region
@@ -69,7 +70,7 @@ std::vector<double> simplexVolumes(const SimplexDecomposition& cells, std::span<
 
 struct UntangleOptions {
     int layers = 2;                 // region: the inverted cells and this many layers around them
-    int maxRounds = 4;              // rounds of sweeps, the layers doubled after each
+    int maxRounds = 5;              // rounds of sweeps, the layers doubled after each
     int maxSweepsPerRound = 200;
     double targetFraction = 0.1;    // α_s = this × the reference simplex volume
 };

@@ -1191,6 +1191,17 @@ TEST(RigidBodyMotionSolverUntangling, RepairsTheInvertingSingleLinearizedStepIn2
 
 // Issue 13.3's report: the cases that invert today, with and without the untangling stage
 // (inverted cells, worst quality, checkMesh max non-orthogonality, wall time).
+TEST(RigidBodyMotionSolverUntangling, DISABLED_MeasureUniformAirfoil)
+{
+    for (const double angle : {4.0, 10.0}) {
+        auto solver = makeSolver(airfoilMesh(), "weighting uniform; subSteps 1;");
+        const AirfoilRun run = turnAirfoil(*solver, angle, true);
+        std::printf("airfoil uniform %.0f: inverted %d untangled %d worst %.4f maxNonOrth %.2f %.2f s %s\n", angle,
+                    run.report.invertedCellCount, run.report.untangledCellCount, run.report.worstQuality,
+                    run.maxNonOrthogonality, run.report.wallSeconds, run.report.reason.c_str());
+    }
+}
+
 TEST(RigidBodyMotionSolverUntangling, DISABLED_MeasureRescuedCases)
 {
     auto print = [](const std::string& name, const MotionSolver& solver, const MotionSolveReport& report) {
