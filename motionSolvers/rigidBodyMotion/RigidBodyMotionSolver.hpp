@@ -26,6 +26,10 @@
 //    has more inverted cells than the initial mesh is halved and retried, up to
 //    maxSubStepSplits times. A patch whose prescribed motion is rigid is split into rotations,
 //    not chords.
+//  - Untangling (`untangle on`, the default; src/Untangling.hpp): when a solve leaves inverted
+//    cells the initial mesh did not have, the free and sliding points around them are moved
+//    until none is, prescribed points untouched; the reason says how many cells were repaired,
+//    or which stay inverted and where.
 //  - solve() never throws because cells inverted: MotionSolveReport counts them (2D: signed
 //    area ≤ 0; 3D: a face pyramid or the volume ≤ 0, as ThesisQuality counts them).
 
