@@ -9,6 +9,7 @@
 #include "PetscTestEnvironment.hpp"
 #include "RbmEnergy.hpp"
 #include "RbmProblem.hpp"
+#include "ReducedNewtonSolver.hpp"
 #include "RigidMotionModes.hpp"
 #include "SubStepping.hpp"
 
@@ -1108,10 +1109,12 @@ LineCase lineCase(EdgeWeighting weighting)
     return c;
 }
 
-// Every variant plus the matrix-free linearized solve (its own projection code).
+// Every variant plus the matrix-free linearized solve and reduced Newton (their own
+// projection code).
 std::vector<NamedFactory> allVariantsWithMatrixFree()
 {
     std::vector<NamedFactory> variants = allVariants();
+    variants.push_back({"ReducedNewton", [](const RbmProblem& p) { return std::make_unique<ReducedNewtonSolver>(p); }, true});
     variants.push_back({"MatrixFreeLinearized",
                         [](const RbmProblem& p) {
                             CoupledLinearizedOptions options;
@@ -1172,6 +1175,7 @@ TEST(LineNodes, StayOnBothPlanesAndAreAConstrainedMinimumAlongTheLine)
             }
             EXPECT_GT(alongLine, 1e-3) << variant.name << ": the line nodes do move along their line";
             if (!variant.nonlinear || std::string(variant.name) == "DecoupledNonlinear") continue;
+            // (ReducedNewton's rotations are its best fits: the slope test applies to it too.)
             // Coupled nonlinear minimisers: ∂E/∂s along d is zero, across (n_x) it is not.
             const RbmEnergy energy(*c.problem, RotationModel::exact, prescribed);
             std::vector<double> unknowns(c.problem->unknownCount());

@@ -576,11 +576,10 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
             for (int a = 0; a < m; ++a) {
                 Vector3& value = trial[nodes[a]];
                 for (int q = 0; q < dim; ++q) value[q] += lambda * step[static_cast<std::size_t>(a) * dim + q];
-                if (problem_.kind(nodes[a]) == NodeKind::sliding) {  // back onto the plane exactly
-                    const Vector3& normal = problem_.slidingNormal(nodes[a]);
+                if (problem_.kind(nodes[a]) == NodeKind::sliding) {  // back onto the plane (line) exactly
                     Vector3 c{};
                     for (int q = 0; q < dim; ++q) c[q] = offset[static_cast<std::size_t>(a) * dim + q];
-                    value -= (dot(value, normal) - dot(c, normal)) * normal;
+                    value -= problem_.slidingNormalPart(nodes[a], value - c);
                 }
             }
             trialEnergy = fitAndEnergy(trial, trialRotations);
