@@ -27,6 +27,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <ctime>
 #include <functional>
 #include <map>
 #include <numbers>
@@ -1111,10 +1113,58 @@ TEST(RigidBodyMotionSolverSubSteps, DISABLED_MeasureSingleStepFailures)
     }
 }
 
+// Issue 12: linearized sub-step counts against validity, quality and CPU time — rotations of
+// the squares' inner square (§3.1) and of the boundary-layer airfoil fixture, and the
+// matrix-free linear solver on the airfoil. For docs/motionSolver.md "Sub-steps".
+TEST(RigidBodyMotionSolverSubSteps, DISABLED_MeasureLinearizedSubStepCounts)
+{
+    auto measure = [](const PolyMesh& mesh, const std::string& patch, const RigidMotion& motion, const std::string& name,
+                      const std::vector<std::string>& variants) {
+        for (const std::string& coefficients : variants) {
+            auto solver = makeSolver(mesh, coefficients);
+            solver->setPatchDisplacement(patch, patchDisplacement(*solver, patch, [&](const Vector3& x) { return motion.displacement(x); }));
+            const std::clock_t start = std::clock();
+            const MotionSolveReport report = solver->solve();
+            const double cpu = static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC;
+            QualityEvaluator evaluator(solver->mesh());
+            const double nonOrthogonality = evaluator.evaluate(solver->curPoints()).checkMesh.maxNonOrthogonality;
+            std::printf("%-22s %-70s sub-steps %4d inverted %4d maxNonOrth %6.2f cpu %7.2f s conv %d residual %.3g (%s)\n",
+                        name.c_str(), coefficients.c_str(), report.subStepCount, static_cast<int>(report.invertedCellCount),
+                        nonOrthogonality, cpu, report.converged, report.residual, report.reason.c_str());
+            std::fflush(stdout);
+        }
+    };
+    const char* only = std::getenv("RBM_MEASURE_ONLY");
+    auto wanted = [&](const std::string& name) { return !only || name.find(only) != std::string::npos; };
+    std::vector<std::string> counts;
+    for (const int n : {1, 2, 3, 5, 9, 15, 45}) counts.push_back("formulation linearized; subSteps " + std::to_string(n) + ";");
+    counts.push_back("formulation linearized;");
+    counts.push_back("subSteps 1;");
+    const PolyMesh squares = squaresMesh(20, 4, 10.0);
+    for (const double angle : {10.0, 45.0, 90.0}) {
+        const std::string name = "squares " + std::to_string(static_cast<int>(angle)) + " deg";
+        if (wanted(name)) measure(squares, "inner", {{0, 0, 1}, degrees(angle), {100.0, 100.0, 0.0}, {}}, name, counts);
+    }
+    if (wanted("squares shift"))
+        measure(squares, "inner", {{0, 0, 1}, 0.0, {100.0, 100.0, 0.0}, {40.0, 20.0, 0.0}}, "squares shift", counts);
+    if (wanted("squares 30+shift"))
+        measure(squares, "inner", {{0, 0, 1}, degrees(30.0), {100.0, 100.0, 0.0}, {40.0, 0.0, 0.0}}, "squares 30+shift", counts);
+    const PolyMesh& airfoil = airfoilMesh();
+    for (const double angle : {4.0, 10.0, 30.0}) {
+        const std::string name = "airfoil " + std::to_string(static_cast<int>(angle)) + " deg";
+        std::vector<std::string> variants{"formulation linearized; subSteps 1;", "formulation linearized; subSteps 2;",
+                                          "formulation linearized; subSteps 4;", "formulation linearized; subSteps 10;",
+                                          "formulation linearized;", "subSteps 1;",
+                                          "formulation linearized; subSteps 1; linearSolver matrixFree;"};
+        if (wanted(name)) measure(airfoil, "airfoil", {{0, 0, 1}, degrees(angle), {1.0, 0.0, 0.0}, {}}, name, variants);
+    }
+}
+
 TEST(RigidBodyMotionSolverSubSteps, AutomaticCountMakesAnInvertingSingleStepValid)
 {
     // Linearized, inner square translated by (40, 20) in one step: cells invert. The thesis'
-    // count (§2.6): |u| = 44.72 against the shortest edge 10 gives floor(4.472) + 1 = 5 steps.
+    // count (§2.6) was floor(44.72 / 10) + 1 = 5; the rotation-aware count (issue 12) takes the
+    // shear |t| / gap = 44.72 / (100 − 28.28) = 0.62 rad = 35.7° in 10° steps: 4, valid.
     const PolyMesh mesh = squaresMesh(20, 4, 10.0);
     const RigidMotion shift{{0, 0, 1}, 0.0, {100.0, 100.0, 0.0}, {40.0, 20.0, 0.0}};
     auto run = [&](const std::string& coefficients) {
@@ -1126,7 +1176,7 @@ TEST(RigidBodyMotionSolverSubSteps, AutomaticCountMakesAnInvertingSingleStepVali
     const MotionSolveReport single = run("formulation linearized; subSteps 1; untangle off;");
     const MotionSolveReport automatic = run("formulation linearized;");
     EXPECT_GT(single.invertedCellCount, 0);
-    EXPECT_EQ(automatic.subStepCount, 5);
+    EXPECT_EQ(automatic.subStepCount, 4);
     EXPECT_EQ(automatic.invertedCellCount, 0);
     EXPECT_TRUE(automatic.converged) << automatic.reason;
 }
@@ -1140,6 +1190,57 @@ std::pair<MotionSolveReport, std::vector<Vector3>> moveInner(const PolyMesh& mes
                                  patchDisplacement(*solver, "inner", [&](const Vector3& x) { return motion.displacement(x); }));
     MotionSolveReport report = solver->solve();
     return {report, solver->curPoints()};
+}
+
+TEST(RigidBodyMotionSolverSubSteps, AutomaticCountSplitsRotationsByAngleNotByTheFirstCellHeight)
+{
+    // Issue 12: `subSteps auto`, linearized, counts ⌈(|θ| + |t| / gap) / 10°⌉ per moving patch
+    // (SubStepping.hpp). The squares (§3.1): the inner square turned about its centre (t = 0).
+    const PolyMesh squares = squaresMesh(20, 4, 10.0);
+    auto turnSquare = [&](double angle) {
+        auto solver = makeSolver(squares, "formulation linearized;");
+        const RigidMotion turn{{0, 0, 1}, degrees(angle), {100.0, 100.0, 0.0}, {}};
+        solver->setPatchDisplacement("inner", patchDisplacement(*solver, "inner", [&](const Vector3& x) { return turn.displacement(x); }));
+        return solver->solve();
+    };
+    EXPECT_EQ(turnSquare(10.0).subStepCount, 1);  // the thesis' rule: |u| = 3.9 < 10, also 1
+    const MotionSolveReport turned45 = turnSquare(45.0);
+    EXPECT_EQ(turned45.subStepCount, 5);  // the thesis' rule: 3 (|u| = 21.6 against 10)
+    EXPECT_EQ(turned45.invertedCellCount, 0);
+    const MotionSolveReport turned90 = turnSquare(90.0);
+    EXPECT_EQ(turned90.subStepCount, 9);  // 1 to 3 steps invert 4 to 8 cells (docs/motionSolver.md)
+    EXPECT_EQ(turned90.invertedCellCount, 0);
+    // A translation of everything (inner and outer walls alike) is a rigid motion of the whole
+    // mesh: one sub-step, exact; the thesis' rule asks ⌊44.7 / 10⌋ + 1 = 5.
+    {
+        auto solver = makeSolver(squares, "formulation linearized;");
+        const Vector3 shift{40.0, 20.0, 0.0};
+        for (const std::string patch : {"inner", "outer"})
+            solver->setPatchDisplacement(patch, patchDisplacement(*solver, patch, [&](const Vector3&) { return shift; }));
+        const MotionSolveReport report = solver->solve();
+        EXPECT_EQ(report.subStepCount, 1);
+        EXPECT_EQ(report.invertedCellCount, 0);
+        for (const Vector3& u : solver->pointDisplacement()) EXPECT_LT(norm(u - shift), 1e-9);
+    }
+}
+
+TEST(RigidBodyMotionSolverSubSteps, AutomaticCountOnTheBoundaryLayerAirfoilIsAFewStepsAndValid)
+{
+    // Issue 12: the thesis' rule asked 15 381 (4°) and 38 412 (10°) sub-steps of the
+    // boundary-layer fixture (first cell 4.5e-6 chords), capped at maxSubSteps = 100: 26.7 s CPU.
+    // The rotation-aware count: valid, max non-orthogonality within 0.2° of 100 sub-steps
+    // (34.21° against 34.24° at 4°; 34.48° against 34.59° at 10°). The turn about the trailing
+    // edge also moves the centroid, 0.5 chord × θ against a 19.5-chord clearance to the far
+    // field, so 10° takes 2 sub-steps and 30° 4.
+    const PolyMesh& mesh = airfoilMesh();
+    for (const auto& [angle, expected] : {std::pair{4.0, 1}, std::pair{10.0, 2}, std::pair{30.0, 4}}) {
+        auto solver = makeSolver(mesh, "formulation linearized;");
+        const AirfoilRun run = turnAirfoil(*solver, angle, true);
+        EXPECT_EQ(run.report.subStepCount, expected) << angle << ": " << run.report.reason;
+        EXPECT_EQ(run.report.invertedCellCount, 0) << angle;
+        EXPECT_TRUE(run.report.converged) << run.report.reason;
+        EXPECT_LT(run.maxNonOrthogonality, 36.0) << angle;
+    }
 }
 
 TEST(RigidBodyMotionSolverSubSteps, SubStepThatInvertsCellsIsHalvedAndRetried)

@@ -23,6 +23,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <numbers>
 #include <stdexcept>
 
 namespace rbm::motion {
@@ -715,7 +716,8 @@ void RigidBodyMotionSolver::Impl::solveInIncrements(std::span<const Vector3> tar
     int count = options.subSteps;
     bool capped = false;
     if (automatic) {
-        count = automaticSubStepCount(*problem, target);
+        count = rotationAwareSubStepCount(*problem, target, groupOffsets, groupNodes,
+                                          defaultMaxSubStepAngleDegrees * std::numbers::pi / 180.0);
         if (count > options.maxSubSteps) {
             count = options.maxSubSteps;
             capped = true;

@@ -33,6 +33,30 @@ namespace rbm::motion {
 // Thesis §2.6: the number of sub-steps for the given prescribed displacements (≥ 1).
 int automaticSubStepCount(const RbmProblem& problem, std::span<const Vector3> prescribedDisplacement);
 
+// The count `subSteps auto` uses for the linearized variants (issue 12). The thesis' rule
+// compares |u_b| with the first cell height: on a boundary-layer mesh (wall spacing ~1e-5
+// chord) a 4° rotation asks for 15 381 sub-steps although one linearized step of that
+// rotation is valid (the linearized solve reproduces a rigid motion with node-local
+// rotations; the error of the small-angle model grows with the angle, not with |u_b|).
+// So every group of prescribed nodes (one per moving patch; groupNodes[groupOffsets[g] ..
+// groupOffsets[g+1]) ) is split into its best rigid motion (centroid translation + best
+// rotation of its nodes, the fit of §2.3 over the group) and the rest:
+//   rotation angle θ_g and → ⌈(|θ_g| + |t_g − t_o| / gap_g) / maxAngle⌉ sub-steps: the
+//   translation t_g           centroid's translation relative to the nearest other group o
+//                            shears the cells between them by about |t_g − t_o| / gap_g
+//                            (gap_g: clearance between the group's bounding circle and the
+//                            nearest node of another group), so a translation of the whole
+//                            mesh needs one sub-step;
+//   non-rigid part r_b     → the thesis' rule on |r_b| (⌊|r_b| / d_min(b)⌋ + 1), parts below
+//                            1e-9 of the group's size and motion being rounding;
+//   sliding nodes          → the thesis' rule on the normal component, as above;
+// n is the largest of these. A sub-step that still inverts cells is halved by the caller
+// (maxSubStepSplits), so the count need not be conservative.
+inline constexpr double defaultMaxSubStepAngleDegrees = 10.0;
+int rotationAwareSubStepCount(const RbmProblem& problem, std::span<const Vector3> prescribedDisplacement,
+                              std::span<const int> groupOffsets, std::span<const int> groupNodes,
+                              double maxAngleRadians);
+
 enum class SubStepReference { previousSubStep, initialMesh };
 
 struct SubStepOptions {
