@@ -591,6 +591,12 @@ void MoveMeshRun::printHeader() const
          << "Motion solver : " << solver_->typeName();
     if (const auto* rbmSolver = dynamic_cast<const motion::RigidBodyMotionSolver*>(solver_.get())) {
         out_ << ": " << rbmSolver->options().describe();
+        if (rbmSolver->options().stiffening.automaticPatches && !rbmSolver->stiffeningPatches().empty()) {
+            out_ << " = power " << rbmSolver->options().stiffening.exponent << " inverseDistance (";
+            for (std::size_t k = 0; k < rbmSolver->stiffeningPatches().size(); ++k)
+                out_ << (k ? " " : "") << mesh_.patches[rbmSolver->stiffeningPatches()[k]].name;
+            out_ << ')';
+        }
     }
     out_ << " (constant/dynamicMeshDict)\n"
          << "Boundary      : " << relative(boundaryFieldFile_) << "\n"

@@ -75,8 +75,8 @@ StiffeningOptions readStiffening(const io::Entry& entry)
     // and `power k inverseDistance (patches)`, a wrapper shaped like OpenFOAM's
     // `exponential alpha <diffusivity>` (quadratic is power 2). The exponent comes before the
     // diffusivity, not before the list: `inverseDistance 2 (a b)` would be OpenFOAM's sized list.
-    const std::string valid =
-        "none; inverseDistance (patch ...); quadratic inverseDistance (patch ...); power k inverseDistance (patch ...)";
+    const std::string valid = "auto; none; inverseDistance (patch ...); quadratic inverseDistance (patch ...); "
+                              "power k inverseDistance (patch ...)";
     if (entry.isDictionary()) failAt(entry, "'stiffening' must be one of: " + valid);
     io::TokenStream stream = entry.stream();
     if (stream.atEnd()) failAt(entry, "'stiffening' has no value; valid forms are: " + valid);
@@ -85,10 +85,15 @@ StiffeningOptions readStiffening(const io::Entry& entry)
     if (stream.peek().kind != io::Token::Kind::Word)
         failAt(entry, "invalid stiffening '" + stream.peek().text + "'; valid forms are: " + valid);
     std::string word = stream.readWord();
-    if (word == "none" || word == "uniform") {
+    if (word == "auto" || word == "none" || word == "uniform") {
         if (!stream.atEnd()) failAt(entry, "unexpected '" + stream.peek().text + "' after 'stiffening " + word + "'");
+        if (word != "auto") {
+            stiffening.exponent = 0.0;
+            stiffening.automaticPatches = false;
+        }
         return stiffening;
     }
+    stiffening.automaticPatches = false;
     stiffening.exponent = 1.0;
     if (word == "quadratic") {
         stiffening.exponent = 2.0;
@@ -189,7 +194,9 @@ std::string RigidBodyMotionOptions::describe() const
     text << ", weighting " << edgeWeightingName(weighting) << ", subSteps ";
     if (subSteps == 0) text << "auto";
     else text << subSteps;
-    if (stiffening.exponent > 0) {
+    if (stiffening.enabled() && stiffening.automaticPatches) {
+        text << ", stiffening auto";
+    } else if (stiffening.enabled()) {
         text << ", stiffening ";
         if (stiffening.exponent == 2.0) text << "quadratic ";
         else if (stiffening.exponent != 1.0) text << "power " << stiffening.exponent << ' ';

@@ -18,8 +18,9 @@
 //         maxIterations     50;                   // nonlinear iterations (per sub-step)
 //         linearSolver      automatic;            // automatic | direct | iterative | matrixFree
 //         petscOptions      "-ksp_type cg -pc_type gamg";
-//         stiffening        quadratic inverseDistance (airfoil);   // or: inverseDistance (a b);
-//                                                 //     power 0.8 inverseDistance (a b); none
+//         stiffening        auto;                 // auto | none | inverseDistance (a b);
+//                                                 //     quadratic inverseDistance (a b);
+//                                                 //     power 0.8 inverseDistance (a b)
 //         untangle          on;                   // on | off: repair cells the solve left inverted
 //     }
 //
@@ -50,12 +51,25 @@ enum class RbmAlgorithm { newton, localGlobal, reducedNewton };
 // w_ij is multiplied by (h_min / d)^exponent, d the distance from the edge midpoint to the
 // nearest face of the patches in the reference mesh, clipped below at h_min, the shortest
 // edge of the mesh.
+//
+// The default, `stiffening auto;`, is `power 0.8 inverseDistance` towards the patches the
+// solver chooses (automaticStiffeningPatches in Stiffening.hpp: every patch with a boundary of
+// its own, i.e. not empty, wedge, processor, cyclic or a symmetry plane), applied to a solve whose prescribed
+// patches each move rigidly (a moving body in a fixed far field), and not to one where a
+// prescribed patch deforms (a bending wing, a twisted cube), where it made the mesh worse;
+// docs/motionSolver.md ("Default stiffening") has the measurements behind it.
+// `stiffening none;` switches it off; an explicit form always applies.
+inline constexpr double defaultStiffeningExponent = 0.8;
+
 struct StiffeningOptions {
     // 0: none; 1: inverseDistance; 2: quadratic inverseDistance; k: power k inverseDistance
     // (0 < k ≤ maxStiffeningExponent).
-    double exponent = 0.0;
+    double exponent = defaultStiffeningExponent;
+    bool automaticPatches = true;      // `auto`: the solver chooses the patches; `patches` is empty
     std::vector<std::string> patches;  // patch names (or groups) as written
     int line = 0;                      // of the entry, for errors about the patch names
+
+    bool enabled() const { return exponent > 0.0; }
 };
 
 // Beyond this the far-field weights fall below rounding relative to the near ones on a

@@ -126,6 +126,12 @@ public:
         return values;
     }
 
+    // Whether every group's motion from -> to is rigid (to rounding; an empty group counts as rigid).
+    bool allRigid() const
+    {
+        return std::all_of(motions_.begin(), motions_.end(), [](const GroupMotion& m) { return m.rigid; });
+    }
+
 private:
     struct GroupMotion {
         bool rigid = false;
@@ -148,7 +154,10 @@ private:
     {
         const int begin = groupOffsets_[group];
         const int end = groupOffsets_[group + 1];
-        if (end == begin) return;
+        if (end == begin) {
+            motions_[group].rigid = true;
+            return;
+        }
         Vector3 centreFrom;
         Vector3 centreTo;
         for (int k = begin; k < end; ++k) {
@@ -261,6 +270,8 @@ struct RigidBodyMotionSolver::Impl {
     std::shared_ptr<const CellNeighbourGraph> graph;
     std::vector<Vector3> referencePoints;  // per node (2D: frame coordinates of the front plane)
     std::vector<double> edgeFactors;       // stiffening, per graph edge; empty: none
+    std::vector<Label> stiffenedPatches;   // the patches of the stiffening distance
+    std::vector<double> automaticFactors;  // `stiffening auto`: the factors, applied while the motion is rigid
 
     // Node classes of the current problem.
     std::vector<NodeConstraint> constraints;
@@ -288,6 +299,9 @@ struct RigidBodyMotionSolver::Impl {
     Label pointOfNode(int node) const { return twoD ? twoD->frontPointOfNode[node] : node; }
 
     void buildStiffening();
+    // `stiffening auto`: stiffen while every prescribed patch moves rigidly to `target`, not
+    // otherwise (the problem is rebuilt when that changes); a zero target changes nothing.
+    void chooseAutomaticStiffening(std::span<const Vector3> target);
     // Recomputes the node classes from the patch conditions; rebuilds the problem when they changed.
     void updateProblem();
     std::vector<Vector3> prescribedTarget() const;
@@ -330,9 +344,10 @@ RigidBodyMotionSolver::Impl::Impl(RigidBodyMotionSolver& solver, RigidBodyMotion
 void RigidBodyMotionSolver::Impl::buildStiffening()
 {
     const StiffeningOptions& stiffening = options.stiffening;
-    if (stiffening.exponent == 0) return;
+    if (!stiffening.enabled()) return;
     const PolyMesh& mesh = owner.mesh();
     std::vector<Label> patches;
+    if (stiffening.automaticPatches) patches = automaticStiffeningPatches(mesh);
     for (const std::string& name : stiffening.patches) {
         bool found = false;
         for (Label p = 0; p < static_cast<Label>(mesh.patches.size()); ++p) {
@@ -361,6 +376,19 @@ void RigidBodyMotionSolver::Impl::buildStiffening()
         surface = patchSurface(mesh, owner.points0(), patches);
     }
     edgeFactors = motion::stiffeningFactors(*graph, referencePoints, dimension, surface, stiffening.exponent);
+    stiffenedPatches = std::move(patches);
+    if (stiffening.automaticPatches) automaticFactors = edgeFactors;
+}
+
+void RigidBodyMotionSolver::Impl::chooseAutomaticStiffening(std::span<const Vector3> target)
+{
+    if (automaticFactors.empty() || allZero(target)) return;
+    const std::vector<Vector3> zero(target.size());
+    const bool rigid = BoundaryPath(dimension, referencePoints, groupOffsets, groupNodes, zero, target).allRigid();
+    if (rigid == !edgeFactors.empty()) return;
+    edgeFactors = rigid ? automaticFactors : std::vector<double>{};
+    baseSolver.reset();
+    problem = problemAround(referencePoints);
 }
 
 void RigidBodyMotionSolver::Impl::updateProblem()
@@ -818,6 +846,7 @@ const PseudoTwoDMesh* RigidBodyMotionSolver::twoDMesh() const { return impl_->tw
 const RbmProblem* RigidBodyMotionSolver::problem() const { return impl_->problem.get(); }
 const RbmState& RigidBodyMotionSolver::state() const { return impl_->state; }
 const std::vector<double>& RigidBodyMotionSolver::stiffeningFactors() const { return impl_->edgeFactors; }
+const std::vector<Label>& RigidBodyMotionSolver::stiffeningPatches() const { return impl_->stiffenedPatches; }
 Label RigidBodyMotionSolver::initialInvertedCellCount() const { return impl_->initialInverted; }
 
 MotionSolveReport RigidBodyMotionSolver::solve()
@@ -827,6 +856,7 @@ MotionSolveReport RigidBodyMotionSolver::solve()
     const ScopedPetscOptions petscOptions(impl.options.petscOptionList);
     impl.updateProblem();
     const std::vector<Vector3> target = impl.prescribedTarget();
+    impl.chooseAutomaticStiffening(target);
 
     MotionSolveReport report;
     if (allZero(target)) {

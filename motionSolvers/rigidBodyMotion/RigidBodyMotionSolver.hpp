@@ -69,8 +69,13 @@ public:
     // Per node (2D: planar node, in the plane's frame; 3D: mesh point): displacement and
     // rotation of the last solve.
     const RbmState& state() const;
-    // The stiffening factors f_ij per graph edge (Stiffening.hpp); empty without stiffening.
+    // The stiffening factors f_ij per graph edge (Stiffening.hpp) of the last solve (before
+    // the first: of the construction); empty without stiffening, and with `stiffening auto`
+    // when a prescribed patch did not move rigidly.
     const std::vector<double>& stiffeningFactors() const;
+    // The patches the stiffening measures the distance to (indices into mesh().patches; with
+    // `stiffening auto`, the default, chosen by automaticStiffeningPatches); empty without stiffening.
+    const std::vector<Label>& stiffeningPatches() const;
     // Inverted cells of the initial mesh (sub-steps are judged against this count).
     Label initialInvertedCellCount() const;
 

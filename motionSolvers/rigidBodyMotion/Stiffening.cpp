@@ -3,9 +3,11 @@
 #include "ThreadCount.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <string_view>
 
 namespace rbm::motion {
 
@@ -175,6 +177,21 @@ double NearestSurface::distance(const Vector3& point) const
         }
     }
     return std::sqrt(best);
+}
+
+std::vector<Label> automaticStiffeningPatches(const PolyMesh& mesh)
+{
+    static const std::array<std::string_view, 10> notABoundary{
+        "empty",  "wedge",     "processor",  "processorCyclic", "cyclic",
+        "cyclicAMI", "cyclicACMI", "cyclicSlip", "symmetryPlane", "symmetry"};
+    std::vector<Label> patches;
+    for (Label p = 0; p < static_cast<Label>(mesh.patches.size()); ++p) {
+        const Patch& patch = mesh.patches[p];
+        if (patch.faceCount == 0) continue;
+        if (std::find(notABoundary.begin(), notABoundary.end(), patch.type) != notABoundary.end()) continue;
+        patches.push_back(p);
+    }
+    return patches;
 }
 
 NearestSurface patchSurface(const PolyMesh& mesh, std::span<const Vector3> points, std::span<const Label> patches)

@@ -64,6 +64,15 @@ NearestSurface patchSurface(const PolyMesh& mesh, std::span<const Vector3> point
 // The boundary edges of the given planar patches (indices into planar.patches).
 NearestSurface patchSurface(const PlanarMesh& planar, std::span<const Label> planarPatches);
 
+// The patches `stiffening auto` (the default) measures the distance to: every patch with
+// faces that is a boundary of the domain of its own, i.e. whose type is not `empty`, `wedge`
+// (the 2D planes), `processor`/`processorCyclic` (a cut between ranks), `cyclic`/`cyclicAMI`/
+// `cyclicACMI`/`cyclicSlip` (coupled to another patch) or `symmetryPlane`/`symmetry` (a mirror:
+// the mirrored domain has no boundary there, and a one-layer 3D mesh between two mirror planes
+// must move as its 2D form does): moving, fixed, free and slip patches alike.
+// Indices into mesh.patches, in order.
+std::vector<Label> automaticStiffeningPatches(const PolyMesh& mesh);
+
 // f_ij per directed edge of `graph` (same order as graph.neighbours), see the file comment.
 // 2D (dimension 2) uses the x and y of the points only. exponent 0 gives all ones; 1 and 2
 // are computed without std::pow (the same bits as before non-integer exponents existed).
