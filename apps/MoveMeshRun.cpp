@@ -595,7 +595,7 @@ void MoveMeshRun::printHeader() const
             out_ << " = power " << rbmSolver->options().stiffening.exponent << " inverseDistance (";
             for (std::size_t k = 0; k < rbmSolver->stiffeningPatches().size(); ++k)
                 out_ << (k ? " " : "") << mesh_.patches[rbmSolver->stiffeningPatches()[k]].name;
-            out_ << ')';
+            out_ << ") while every prescribed patch moves rigidly";
         }
     }
     out_ << " (constant/dynamicMeshDict)\n"

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The stiffening study of docs/motionSolver.md ("Default stiffening: measured on every case"):
+# The stiffening study of docs/motionSolver.md ("Default stiffening"):
 # moves every tutorial, the thesis' squares with the solver's defaults and the boundary-layer
 # airfoil fixture (4° and 10° about its trailing edge) with rbm under several `stiffening`
 # settings, and optionally with OpenFOAM's displacementLaplacian under several diffusivities,
@@ -14,8 +14,8 @@
 # (default: all). Settings: STIFFENING_SETTINGS (space-separated keys of `setting()` below;
 # default: every key but auto, which is the default's spelling). OpenFOAM: DIFFUSIVITIES
 # likewise; PITCHING_STEPS (default 40, one period of the motion: rbm solves each step on the
-# initial mesh, so the second period repeats the first) limits the pitching case for both codes. RBM_BIN: folder of rbmMoveMesh and rbmCheckMesh
-# (default build/bin). Each run works on a copy of the case's inputs (0/, constant/, system/)
+# initial mesh, so the second period repeats the first) limits the pitching case for both
+# codes. RBM_BIN: folder of rbmMoveMesh and rbmCheckMesh (default build/bin). Each run works on a copy of the case's inputs (0/, constant/, system/)
 # in a temporary folder (STUDY_DIR, default a new mktemp -d, deleted at the end unless
 # KEEP_STUDY=1). One run at a time; OpenFOAM v1912 from Debian (/usr/share/openfoam).
 set -euo pipefail
