@@ -26,6 +26,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -985,6 +986,55 @@ TEST(RigidBodyMotionSolverTimeSteps, WarmStartsStayCheapOnABoundaryLayerMesh)
         const std::vector<Vector3> b = cold->curPoints();
         for (std::size_t i = 0; i < a.size(); ++i) largest = std::max(largest, norm(a[i] - b[i]));
         EXPECT_LT(largest, 1e-8) << angle;   // chord 1; the smallest cell is 4.5e-6
+    }
+}
+
+TEST(RigidBodyMotionSolverTimeSteps, WarmStartsWithTheDefaultStiffeningEndWhereColdSolvesEnd)
+{
+    // The same series with the default stiffening. Its factors fall to (h_min/d)^0.8 ≈ 1e-5 in
+    // the far field, so Newton's stopping test (on the weighted gradient) leaves far-field nodes
+    // less converged in absolute terms: at 2° the warm start stops after 1 iteration and differs
+    // from the cold solve by 2.4e-7 chords at (-4.42, -3.96), 2.4e-6 of the 0.1 edges there
+    // (measured; without stiffening the difference is below 1e-8 everywhere, the test above).
+    // Bounded relative to the shortest edge at each point, the measure that matters for the cells.
+    const PolyMesh& mesh = airfoilMesh();
+    std::vector<double> shortestEdge(mesh.pointCount(), std::numeric_limits<double>::infinity());
+    for (Label f = 0; f < mesh.faceCount(); ++f) {
+        const auto face = mesh.face(f);
+        for (std::size_t k = 0; k < face.size(); ++k) {
+            const Label a = face[k];
+            const Label b = face[(k + 1) % face.size()];
+            const double length = norm(mesh.points[a] - mesh.points[b]);
+            shortestEdge[a] = std::min(shortestEdge[a], length);
+            shortestEdge[b] = std::min(shortestEdge[b], length);
+        }
+    }
+    auto warm = makeSolver(mesh, "subSteps 1;");
+    for (const double angle : {1.0, 2.0}) {   // 2°: the step measured below
+        const AirfoilRun run = turnAirfoil(*warm, angle);
+        ASSERT_TRUE(run.report.converged) << angle << ": " << run.report.reason;
+        EXPECT_FALSE(asRbm(*warm).stiffeningFactors().empty());
+        EXPECT_LE(run.report.iterations, 4) << angle;
+        EXPECT_EQ(run.report.invertedCellCount, 0) << angle;
+        auto cold = makeSolver(mesh, "subSteps 1;");
+        const AirfoilRun fromScratch = turnAirfoil(*cold, angle);
+        double largest = 0.0;
+        double largestRelative = 0.0;
+        Label where = 0;
+        const std::vector<Vector3> a = warm->curPoints();
+        const std::vector<Vector3> b = cold->curPoints();
+        for (std::size_t i = 0; i < a.size(); ++i) {
+            largest = std::max(largest, norm(a[i] - b[i]));
+            if (norm(a[i] - b[i]) / shortestEdge[i] > largestRelative) {
+                largestRelative = norm(a[i] - b[i]) / shortestEdge[i];
+                where = static_cast<Label>(i);
+            }
+        }
+        std::printf("%.0f deg: warm %d iterations, largest difference %.3g, relative to the local edge %.3g at (%.3g %.3g), "
+                    "edge %.3g\n",
+                    angle, run.report.iterations, largest, largestRelative, mesh.points[where].x, mesh.points[where].y,
+                    shortestEdge[where]);
+        EXPECT_LT(largestRelative, 1e-5) << angle;
     }
 }
 
