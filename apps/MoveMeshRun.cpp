@@ -15,6 +15,7 @@
 #include "PseudoTwoDExtraction.hpp"
 #include "RigidBodyMotionOptions.hpp"
 #include "RigidBodyMotionSolver.hpp"
+#include "StepAssessment.hpp"
 #include "ThesisQuality.hpp"
 #include "ThreadCount.hpp"
 #include "TimeFolderWriter.hpp"
@@ -78,35 +79,6 @@ bool isFinite(const Vector3& v) { return std::isfinite(v.x) && std::isfinite(v.y
 constexpr std::uint8_t nodeFree = 0;
 constexpr std::uint8_t nodeSliding = 1;
 constexpr std::uint8_t nodePrescribed = 2;
-
-// 3D cell quality from the face pyramids with apex at the cell centre, V_f = S_f · (C_f − C)/3
-// with S_f outward (the pyramids of the thesis' 3D inverted-cell test, ThesisQuality.hpp):
-// ratio = n_faces · min_f V_f / |V_cell|, the smallest pyramid relative to the mean one — 1
-// for a cube or a regular tetrahedron, small for flattened cells, ≤ 0 for inverted ones (the
-// same figure as the rigidBodyMotionSolver's MotionSolveReport::worstQuality in 3D).
-struct PyramidQuality {
-    double ratio = 0.0;
-    bool inverted = false;   // a pyramid or the volume <= 0, as ThesisQuality counts
-};
-
-PyramidQuality cellPyramidQuality(const PolyMesh& mesh, const MeshTopology& topology, const MeshGeometry& geometry,
-                                  Label cell)
-{
-    const auto c = static_cast<std::size_t>(cell);
-    const Vector3& centre = geometry.cellCentres[c];
-    double smallest = std::numeric_limits<double>::infinity();
-    const auto faces = topology.facesOf(cell);
-    for (const Label face : faces) {
-        const auto f = static_cast<std::size_t>(face);
-        const Vector3 area = mesh.owner[f] == cell ? geometry.faceAreas[f] : -geometry.faceAreas[f];
-        smallest = std::min(smallest, dot(area, geometry.faceCentres[f] - centre) / 3.0);
-    }
-    const double volume = geometry.cellVolumes[c];
-    PyramidQuality quality;
-    quality.inverted = smallest <= 0.0 || volume <= 0.0;
-    quality.ratio = std::abs(volume) > 0.0 ? static_cast<double>(faces.size()) * smallest / std::abs(volume) : 0.0;
-    return quality;
-}
 
 // PETSc options without an underscore in their name (the others all have one).
 bool isPetscOptionWithoutUnderscore(std::string_view argument)
@@ -391,7 +363,7 @@ MoveMeshRun::MoveMeshRun(MoveMeshOptions options, std::ostream& out, std::ostrea
     }
     solver_->pointDisplacement() = std::move(initial);
 
-    evaluator_ = std::make_unique<QualityEvaluator>(mesh_);
+    assessor_ = std::make_unique<motion::StepAssessor>(mesh_);
     if (options_.writeVtk) {
         cells_->vtkCells = io::vtkCellsOf(mesh_, cells_->topology);
         if (detectPseudoTwoD(mesh_) != PseudoTwoDKind::None) {
@@ -718,8 +690,8 @@ void MoveMeshRun::writeTime(const std::string& timeName, const std::vector<Vecto
 void MoveMeshRun::writeVtk(double time, const std::string& timeName, const std::vector<Vector3>& points)
 {
     if (!options_.writesFiles) return;
-    // evaluator_'s geometry is that of `points` (evaluated just before).
-    const MeshGeometry& geometry = evaluator_->geometry();
+    // assessor_'s geometry is that of `points` (evaluated just before).
+    const MeshGeometry& geometry = assessor_->geometry();
     const std::size_t cellCount = geometry.cellVolumes.size();
     const Label internalFaces = mesh_.internalFaceCount();
 
@@ -775,7 +747,7 @@ void MoveMeshRun::writeVtk(double time, const std::string& timeName, const std::
         }
     } else {
         for (std::size_t c = 0; c < cellCount; ++c) {
-            const PyramidQuality pyramids = cellPyramidQuality(mesh_, cells_->topology, geometry, static_cast<Label>(c));
+            const motion::PyramidQuality pyramids = motion::cellPyramidQuality(mesh_, cells_->topology, geometry, static_cast<Label>(c));
             quality.values[c] = pyramids.ratio;
             inverted.values[c] = pyramids.inverted ? 1.0 : 0.0;
         }
@@ -797,27 +769,6 @@ void MoveMeshRun::writeVtk(double time, const std::string& timeName, const std::
                  {nonOrthogonality, skewness, volume, quality, inverted});
     pvd_->add(time, dataset);
     pvd_->write();
-}
-
-double MoveMeshRun::worstCellQuality(const QualityReport& report) const
-{
-    if (report.thesis.dimension == 2) {
-        double worst = std::numeric_limits<double>::quiet_NaN();
-        if (report.thesis.triangleMeanRatio.count > 0) worst = report.thesis.triangleMeanRatio.min;
-        if (report.thesis.quadrilateralShape.count > 0) {
-            worst = std::isnan(worst) ? report.thesis.quadrilateralShape.min
-                                      : std::min(worst, report.thesis.quadrilateralShape.min);
-        }
-        return worst;
-    }
-    const MeshGeometry& geometry = evaluator_->geometry();
-    double worst = std::numeric_limits<double>::quiet_NaN();
-    const Label cellCount = static_cast<Label>(geometry.cellVolumes.size());
-    for (Label c = 0; c < cellCount; ++c) {
-        const double ratio = cellPyramidQuality(mesh_, cells_->topology, geometry, c).ratio;
-        worst = (c == 0) ? ratio : std::min(worst, ratio);
-    }
-    return worst;
 }
 
 // ---- The loop -------------------------------------------------------------------------------
@@ -843,9 +794,9 @@ int MoveMeshRun::run()
     // The initial mesh: quality, and the first entry of the VTK series.
     std::vector<Vector3> points = solver_->curPoints();
     {
-        const QualityReport initial = evaluator_->evaluate(points);
+        const QualityReport initial = assessor_->evaluate(points);
         out_ << "Initial mesh (time " << startTimeName_ << "): worst quality "
-             << fixed(worstCellQuality(initial), 4) << ", max non-orthogonality "
+             << fixed(assessor_->worstCellQuality(initial), 4) << ", max non-orthogonality "
              << fixed(initial.checkMesh.maxNonOrthogonality, 2) << ", max skewness "
              << fixed(initial.checkMesh.maxSkewness, 3) << ", inverted " << initial.invertedCellCount() << "\n\n";
         if (initial.invertedCellCount() > 0) {
@@ -867,56 +818,25 @@ int MoveMeshRun::run()
             name = timeNameOf(time);
             solver_->updateBoundaryConditions(time);
             checkBoundaryDisplacementIsFinite(time);
-            motion::MotionSolveReport solve = solver_->solve();
+            const motion::MotionSolveReport solve = solver_->solve();
             points = solver_->curPoints();
 
             // A solve that produced NaN or infinite values failed whatever it reports; such a
             // mesh is never written (not even with -writeInvalid) and stops the run.
-            const auto nonFinite = std::count_if(solver_->pointDisplacement().begin(), solver_->pointDisplacement().end(),
-                                                 [](const Vector3& u) { return !isFinite(u); });
-            const bool finite = nonFinite == 0 && std::isfinite(solve.residual);
-            std::string nonFiniteText;
-            if (!finite) {
-                if (nonFinite > 0) {
-                    const auto first = std::find_if(solver_->pointDisplacement().begin(), solver_->pointDisplacement().end(),
-                                                     [](const Vector3& u) { return !isFinite(u); });
-                    nonFiniteText = "NaN or infinite displacement at " + std::to_string(nonFinite) + " of " +
-                                    std::to_string(points.size()) + " points (first: point " +
-                                    std::to_string(first - solver_->pointDisplacement().begin()) + ")";
-                } else {
-                    nonFiniteText = "a residual of " + general(solve.residual);
-                }
-                solve.converged = false;
-            }
-            const QualityReport quality = finite ? evaluator_->evaluate(points) : QualityReport{};
-
             io::StepLogRecord record;
             record.step = step;
             record.time = time;
             record.timeName = name;
-            record.subSteps = solve.subStepCount;
-            record.iterations = solve.iterations;
-            record.residual = solve.residual;
-            record.energy = solve.energy;
-            record.converged = solve.converged;
-            record.reason = finite ? solve.reason : solve.reason + "; " + nonFiniteText;
-            if (finite) {
-                record.worstQuality = worstCellQuality(quality);
-                record.maxNonOrthogonality = quality.checkMesh.maxNonOrthogonality;
-                record.maxSkewness = quality.checkMesh.maxSkewness;
-                record.invertedCells = quality.invertedCellCount();
-            } else {
-                record.maxNonOrthogonality = std::numeric_limits<double>::quiet_NaN();
-                record.maxSkewness = std::numeric_limits<double>::quiet_NaN();
-            }
-            const bool valid = solve.converged && record.invertedCells == 0;
+            const motion::StepVerdict verdict = assessor_->assess(solve, solver_->pointDisplacement(), points, record);
+            const bool finite = verdict.finite;
+            const bool valid = verdict.valid;
 
             const bool scheduled = isWriteTime(step, time);   // called every step: it keeps state
             if (valid ? scheduled : options_.writeInvalid && finite) {
                 if (!valid) {
                     err_ << "\n*** WARNING (-writeInvalid): writing time " << name << " although "
                          << (record.invertedCells > 0 ? std::to_string(record.invertedCells) + " cells are inverted"
-                                                      : std::string("the solve did not converge (") + solve.reason + ")")
+                                                      : std::string("the solve did not converge (") + record.reason + ")")
                          << ": this mesh is NOT valid for a flow solver ***\n\n";
                 }
                 writeTime(name, points);
@@ -961,31 +881,11 @@ int MoveMeshRun::run()
                 ++e.invalidSteps;
                 exitStatus = exitRunFailed;
                 if (!options_.writeInvalid || !finite) {
-                    err_ << "rbmMoveMesh: time " << name << ": ";
-                    if (!finite) {
-                        err_ << "the motion solver produced " << nonFiniteText << " (solver's reason: " << solve.reason
-                             << ").\nNothing was written for time " << name
-                             << " (not even with -writeInvalid); earlier times stay as written. A boundary "
-                                "displacement far larger than the mesh, or a linear solver that diverged, does this; "
-                                "-rbm_newton_snes_monitor, -rbm_linearized_ksp_monitor or -ksp_monitor show the "
-                                "iterations.\n";
-                    } else if (record.invertedCells > 0) {
-                        err_ << "the moved mesh has " << record.invertedCells << " inverted cell"
-                             << (record.invertedCells == 1 ? "" : "s");
-                        if (!solve.converged) err_ << " and the solve did not converge (" << solve.reason << ")";
-                        err_ << ".\nNothing was written for time " << name
-                             << "; earlier times stay as written. More sub-steps (subSteps in "
-                                "rigidBodyMotionSolverCoeffs) or the nonlinear formulation may help; -writeInvalid "
-                                "writes the step anyway to look at it.\n";
-                    } else {
-                        err_ << "the motion solver did not converge (" << solve.reason << ")"
-                             << ".\nNothing was written for time " << name
-                             << "; earlier times stay as written. More sub-steps or iterations (subSteps, "
-                                "maxIterations in rigidBodyMotionSolverCoeffs) or another linear solver "
-                                "(linearSolver, petscOptions) may help; -rbm_newton_snes_monitor, "
-                                "-rbm_linearized_ksp_monitor or -ksp_monitor show the iterations; -writeInvalid "
-                                "writes the step anyway to look at it.\n";
-                    }
+                    err_ << "rbmMoveMesh: time " << name << ": " << motion::invalidStepCause(verdict, record)
+                         << ".\nNothing was written for time " << name << (finite ? "" : " (not even with -writeInvalid)")
+                         << "; earlier times stay as written. "
+                         << motion::invalidStepAdvice(verdict, record, "-writeInvalid writes the step anyway to look at it")
+                         << "\n";
                     break;
                 }
             }

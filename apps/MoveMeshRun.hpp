@@ -44,6 +44,7 @@
 #include "PolyMesh.hpp"
 #include "QualityReport.hpp"
 #include "RunLog.hpp"
+#include "StepAssessment.hpp"
 #include "VtkWriter.hpp"
 
 #include <cstdint>
@@ -143,7 +144,6 @@ private:
     std::string timeNameOf(double time);
     void writeTime(const std::string& timeName, const std::vector<Vector3>& points);
     void writeVtk(double time, const std::string& timeName, const std::vector<Vector3>& points);
-    double worstCellQuality(const QualityReport& report) const;
     void computeNodeClasses();
     // Throws std::runtime_error when the solve's estimated memory (MemoryEstimate.hpp) exceeds
     // what the machine has (or RBM_AVAILABLE_MEMORY_MB): before the solver assembles anything.
@@ -180,7 +180,7 @@ private:
     std::vector<std::uint8_t> nodeClasses_;   // per point: 0 free, 1 sliding, 2 prescribed
     std::vector<std::uint8_t> prescribedPatches_;   // per patch: 1 when its condition is prescribed
 
-    std::unique_ptr<QualityEvaluator> evaluator_;
+    std::unique_ptr<motion::StepAssessor> assessor_;   // quality, log figures, validity of a step
     std::unique_ptr<CellFieldWorkspace> cells_;
     std::unique_ptr<io::PvdCollection> pvd_;
 

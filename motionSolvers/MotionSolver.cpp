@@ -62,12 +62,60 @@ MotionSolver::MotionSolver(const PolyMesh& mesh, const io::Dictionary& coefficie
         if (condition->nodeClass() == PatchNodeClass::prescribed && !condition->isTimeDependent())
             condition->evaluateOnMesh(0.0, points0_, pointDisplacement_);
     }
+    describeBoundary();
+}
+
+MotionSolver::MotionSolver(const PolyMesh& mesh, const io::Dictionary& coefficients, BoundaryDescription boundary,
+                           std::filesystem::path caseDirectory)
+    : mesh_(mesh), coefficients_(coefficients), caseDirectory_(std::move(caseDirectory)), points0_(mesh.points),
+      pointDisplacement_(mesh.points.size()), boundary_(std::move(boundary))
+{
+    if (boundary_.size() != mesh_.patches.size())
+        throw std::invalid_argument("MotionSolver: the boundary description has " + std::to_string(boundary_.size()) +
+                                    " patches, the mesh " + std::to_string(mesh_.patches.size()));
+    for (std::size_t p = 0; p < boundary_.size(); ++p) {
+        const BoundaryPatchDescription& patch = boundary_[p];
+        for (Label point : patch.meshPoints)
+            if (point < 0 || point >= static_cast<Label>(points0_.size()))
+                throw std::invalid_argument("MotionSolver: patch " + mesh_.patches[p].name + " names point " +
+                                            std::to_string(point) + ", the mesh has " +
+                                            std::to_string(points0_.size()));
+        if (patch.nodeClass == BoundaryNodeClass::sliding && patch.slidingNormals.size() != patch.meshPoints.size())
+            throw std::invalid_argument("MotionSolver: sliding patch " + mesh_.patches[p].name + " has " +
+                                        std::to_string(patch.slidingNormals.size()) + " normals for " +
+                                        std::to_string(patch.meshPoints.size()) + " points");
+    }
+}
+
+void MotionSolver::describeBoundary()
+{
+    boundary_.clear();
+    boundary_.reserve(patchConditions_.size());
+    for (const auto& condition : patchConditions_) {
+        BoundaryPatchDescription patch;
+        patch.meshPoints = condition->meshPoints();
+        switch (condition->nodeClass()) {
+        case PatchNodeClass::prescribed: patch.nodeClass = BoundaryNodeClass::prescribed; break;
+        case PatchNodeClass::free: patch.nodeClass = BoundaryNodeClass::free; break;
+        case PatchNodeClass::ignored: patch.nodeClass = BoundaryNodeClass::ignored; break;
+        case PatchNodeClass::sliding:
+            patch.nodeClass = BoundaryNodeClass::sliding;
+            patch.mirror = condition->isMirrorPlane();
+            patch.slidingNormals.resize(patch.meshPoints.size());
+            for (std::size_t k = 0; k < patch.meshPoints.size(); ++k)
+                patch.slidingNormals[k] = condition->slidingNormal(static_cast<Label>(k));
+            break;
+        }
+        boundary_.push_back(std::move(patch));
+    }
 }
 
 MotionSolver::~MotionSolver() = default;
 
 void MotionSolver::updateBoundaryConditions(double time)
 {
+    if (patchConditions_.empty() && !boundary_.empty())
+        throw std::logic_error("updateBoundaryConditions: the host evaluates this solver's boundary conditions");
     // Sliding points keep no normal displacement (their plane passes through their reference
     // position); prescribed patches are evaluated afterwards, so a point on a prescribed and a
     // sliding patch gets the prescribed value (prescribed beats sliding).
@@ -88,6 +136,8 @@ void MotionSolver::updateBoundaryConditions(double time)
 
 void MotionSolver::setPatchDisplacement(std::string_view patchName, std::span<const Vector3> displacement)
 {
+    if (patchConditions_.empty() && !boundary_.empty())
+        throw std::logic_error("setPatchDisplacement: the host evaluates this solver's boundary conditions");
     const Label patchIndex = mesh_.findPatch(std::string(patchName));
     if (patchIndex < 0)
         throw std::invalid_argument("setPatchDisplacement: unknown patch " + std::string(patchName) +
@@ -107,6 +157,7 @@ void MotionSolver::setPatchDisplacement(std::string_view patchName, std::span<co
     } else {
         const PointPatchContext context = PointPatchContext::forPatch(mesh_, patchIndex, points0_, caseDirectory_);
         condition = std::make_unique<HostPrescribedDisplacement>(context, displacement);
+        describeBoundary();
     }
     const std::vector<Label>& points = condition->meshPoints();
     for (std::size_t k = 0; k < points.size(); ++k) pointDisplacement_[points[k]] = displacement[k];

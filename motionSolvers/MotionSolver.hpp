@@ -6,15 +6,21 @@
 // displacement of the points the boundary conditions leave free; curPoints() is
 // points0 + displacement.
 //
-// Two ways to drive it:
-//  - from a case (rbmMoveMesh): updateBoundaryConditions(t) evaluates 0/pointDisplacement's
-//    patch conditions at time t, then solve();
+// The solver itself sees the boundary only through a BoundaryDescription (node class and
+// sliding planes per patch) and the prescribed values in pointDisplacement(). Who fills them:
+//  - from a case (rbmMoveMesh): the constructor with the field dictionary builds rbm's own
+//    patch conditions (boundaryMotion/); updateBoundaryConditions(t) evaluates them at time
+//    t, then solve();
 //  - from C++ (a flow or structure solver): setPatchDisplacement() prescribes a patch's
-//    displacement directly every time step, then solve().
+//    displacement directly every time step, then solve();
+//  - from a host that evaluates its own boundary conditions (the OpenFOAM plugin): the
+//    constructor with a BoundaryDescription; the host writes the prescribed points'
+//    displacement into pointDisplacement() before every solve().
 //
 // Points on several patches: prescribed beats sliding beats free (a point on a moving wall
 // and on a symmetry plane moves with the wall).
 
+#include "BoundaryDescription.hpp"
 #include "FoamDictionary.hpp"
 #include "PolyMesh.hpp"
 #include "Vector3.hpp"
@@ -51,6 +57,12 @@ public:
     // setPatchDisplacement.
     MotionSolver(const PolyMesh& mesh, const io::Dictionary& coefficients, const io::Dictionary* pointDisplacement,
                  std::filesystem::path caseDirectory);
+    // A boundary described by the host, which evaluates the boundary conditions itself and
+    // writes the prescribed displacements into pointDisplacement(); updateBoundaryConditions
+    // and setPatchDisplacement are then errors. Throws std::invalid_argument when `boundary`
+    // does not have one entry per mesh patch.
+    MotionSolver(const PolyMesh& mesh, const io::Dictionary& coefficients, BoundaryDescription boundary,
+                 std::filesystem::path caseDirectory);
     virtual ~MotionSolver();
     MotionSolver(const MotionSolver&) = delete;
     MotionSolver& operator=(const MotionSolver&) = delete;
@@ -61,6 +73,8 @@ public:
     const io::Dictionary& coefficients() const { return coefficients_; }
     const std::vector<Vector3>& points0() const { return points0_; }
     std::vector<Vector3>& pointDisplacement() { return pointDisplacement_; }
+    // Node classes and sliding planes per patch, as solve() uses them.
+    const BoundaryDescription& boundary() const { return boundary_; }
     const std::vector<Vector3>& pointDisplacement() const { return pointDisplacement_; }
 
     // Evaluates every patch's boundary condition at `time` into pointDisplacement().
@@ -88,7 +102,13 @@ protected:
     std::filesystem::path caseDirectory_;
     std::vector<Vector3> points0_;
     std::vector<Vector3> pointDisplacement_;
-    std::vector<std::unique_ptr<PointPatchDisplacement>> patchConditions_;  // one per mesh patch
+    BoundaryDescription boundary_;
+    // rbm's own patch conditions (one per mesh patch), empty when the host describes the boundary.
+    std::vector<std::unique_ptr<PointPatchDisplacement>> patchConditions_;
+
+private:
+    // boundary_ from patchConditions_.
+    void describeBoundary();
 };
 
 } // namespace rbm::motion

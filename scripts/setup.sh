@@ -1,12 +1,15 @@
 #!/usr/bin/env bash
 # Installs rbm's build dependencies from Debian 12 packages (idempotent, quiet when
-# everything is already there), then configures and builds rbm in ./build.
+# everything is already there), fetches OpenFOAM v1912's headers for the OpenFOAM plugin
+# (scripts/fetchOpenFOAMHeaders.sh: Debian ships OpenFOAM's libraries but no headers), then
+# configures and builds rbm and the plugin build/lib/librbmMotionSolver.so in ./build.
 #   scripts/setup.sh            install + build
 #   scripts/setup.sh --deps     install only
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-packages=(build-essential cmake pkg-config petsc-dev libvtk9-dev libgtest-dev zlib1g-dev openmpi-bin libopenblas0)
+packages=(build-essential cmake pkg-config petsc-dev libvtk9-dev libgtest-dev zlib1g-dev openmpi-bin libopenblas0
+          openfoam libopenfoam xz-utils)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -17,6 +20,7 @@ if [ ${#missing[@]} -gt 0 ]; then
   apt-get update -qq
   apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
+scripts/fetchOpenFOAMHeaders.sh
 [ "${1:-}" = "--deps" ] && exit 0
 
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null

@@ -34,4 +34,18 @@ Label PolyMesh::findPatch(const std::string& name) const
     return -1;
 }
 
+std::vector<Label> patchMeshPoints(const PolyMesh& mesh, Label patchIndex)
+{
+    const Patch& patch = mesh.patches.at(static_cast<std::size_t>(patchIndex));
+    std::vector<Label> meshPoints;
+    std::vector<bool> seen(static_cast<std::size_t>(mesh.pointCount()), false);
+    for (Label f = patch.startFace; f < patch.startFace + patch.faceCount; ++f)
+        for (Label p : mesh.face(f))
+            if (!seen[static_cast<std::size_t>(p)]) {
+                seen[static_cast<std::size_t>(p)] = true;
+                meshPoints.push_back(p);
+            }
+    return meshPoints;
+}
+
 } // namespace rbm

@@ -72,4 +72,9 @@ public:
     Label findPatch(const std::string& name) const;
 };
 
+// OpenFOAM's localPoints order of patch `patchIndex` (PrimitivePatch::meshPoints): mesh point
+// labels in the order of their first appearance walking the patch's faces, each face's points
+// in order.
+std::vector<Label> patchMeshPoints(const PolyMesh& mesh, Label patchIndex);
+
 } // namespace rbm

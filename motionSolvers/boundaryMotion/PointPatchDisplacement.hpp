@@ -83,9 +83,7 @@ enum class PatchNodeClass : std::uint8_t {
 };
 std::string_view patchNodeClassName(PatchNodeClass nodeClass);
 
-// OpenFOAM's localPoints order of patch `patchIndex`: mesh point labels in the order of their
-// first appearance walking the patch's faces.
-std::vector<Label> patchMeshPoints(const PolyMesh& mesh, Label patchIndex);
+// patchMeshPoints (OpenFOAM's localPoints order of a patch): PolyMesh.hpp.
 
 // Unit normal per patch point (OpenFOAM PrimitivePatch::pointNormals): the normalised sum of the
 // unit normals (face::unitNormal, triangle fan about the point average) of the patch faces

@@ -9,7 +9,6 @@
 #include "MeshGeometry.hpp"
 #include "MotionSolverRegistry.hpp"
 #include "PetscSupport.hpp"
-#include "PointPatchDisplacement.hpp"
 #include "PseudoTwoDExtraction.hpp"
 #include "RbmEnergy.hpp"
 #include "RbmUntangling.hpp"
@@ -396,17 +395,17 @@ void RigidBodyMotionSolver::Impl::updateProblem()
     const int n = nodeCount();
     std::vector<NodeConstraint> classes(n);
     std::vector<int> prescriber(n, -1);
-    const auto& conditions = owner.patchConditions_;
+    const BoundaryDescription& conditions = owner.boundary();
     for (std::size_t patch = 0; patch < conditions.size(); ++patch) {
-        const PointPatchDisplacement& condition = *conditions[patch];
-        const PatchNodeClass nodeClass = condition.nodeClass();
-        if (nodeClass == PatchNodeClass::ignored || nodeClass == PatchNodeClass::free) continue;
-        const std::vector<Label>& points = condition.meshPoints();
+        const BoundaryPatchDescription& condition = conditions[patch];
+        const BoundaryNodeClass nodeClass = condition.nodeClass;
+        if (nodeClass == BoundaryNodeClass::ignored || nodeClass == BoundaryNodeClass::free) continue;
+        const std::vector<Label>& points = condition.meshPoints;
         for (std::size_t k = 0; k < points.size(); ++k) {
             const int node = twoD ? twoD->nodeOfPoint[points[k]] : points[k];
             if (node < 0) continue;
             NodeConstraint& constraint = classes[node];
-            if (nodeClass == PatchNodeClass::prescribed) {
+            if (nodeClass == BoundaryNodeClass::prescribed) {
                 // Prescribed beats sliding beats free; between prescribing patches the first wins.
                 if (constraint.kind != NodeKind::prescribed || prescriber[node] == heldNode) {
                     constraint = {NodeKind::prescribed, {}};
@@ -415,7 +414,7 @@ void RigidBodyMotionSolver::Impl::updateProblem()
                 continue;
             }
             if (constraint.kind == NodeKind::prescribed) continue;
-            Vector3 normal = condition.slidingNormal(static_cast<Label>(k));
+            Vector3 normal = condition.slidingNormals[k];
             if (twoD) {
                 normal = twoD->frame.toLocal(normal);
                 normal.z = 0.0;
@@ -424,9 +423,9 @@ void RigidBodyMotionSolver::Impl::updateProblem()
             if (!(length > 1e-8)) continue;  // a plane parallel to the 2D plane: no in-plane constraint
             normal /= length;
             if (constraint.kind == NodeKind::free) {
-                constraint = {NodeKind::sliding, normal, condition.isMirrorPlane()};
+                constraint = {NodeKind::sliding, normal, condition.mirror};
             } else if (norm(cross(constraint.normal, normal)) <= 1e-6) {
-                constraint.mirror = constraint.mirror || condition.isMirrorPlane();  // a mirror on the same plane
+                constraint.mirror = constraint.mirror || condition.mirror;  // a mirror on the same plane
             } else if (!twoD && constraint.secondNormal == Vector3{}) {
                 // Two different planes (3D): the node slides along their intersection line.
                 constraint.secondNormal = normal;
@@ -470,9 +469,9 @@ void RigidBodyMotionSolver::Impl::updateProblem()
             if (prescribingPatch[node] >= 0) groupNodes[next[prescribingPatch[node]]++] = node;
     }
     pointIsPrescribed.assign(owner.mesh().points.size(), 0);
-    for (const auto& condition : conditions)
-        if (condition->nodeClass() == PatchNodeClass::prescribed)
-            for (Label point : condition->meshPoints()) pointIsPrescribed[point] = 1;
+    for (const BoundaryPatchDescription& condition : conditions)
+        if (condition.nodeClass == BoundaryNodeClass::prescribed)
+            for (Label point : condition.meshPoints) pointIsPrescribed[point] = 1;
 
     baseSolver.reset();
     problem.reset();
@@ -823,8 +822,20 @@ RigidBodyMotionSolver::RigidBodyMotionSolver(const PolyMesh& mesh, const io::Dic
                                              std::filesystem::path caseDirectory)
     : MotionSolver(mesh, coefficients, pointDisplacement, std::move(caseDirectory))
 {
+    initialise();
+}
+
+RigidBodyMotionSolver::RigidBodyMotionSolver(const PolyMesh& mesh, const io::Dictionary& coefficients,
+                                             BoundaryDescription boundary, std::filesystem::path caseDirectory)
+    : MotionSolver(mesh, coefficients, std::move(boundary), std::move(caseDirectory))
+{
+    initialise();
+}
+
+void RigidBodyMotionSolver::initialise()
+{
     // Parse the options first so that the PETSc options apply while the core builds its objects.
-    RigidBodyMotionOptions options = RigidBodyMotionOptions::read(coefficients);
+    RigidBodyMotionOptions options = RigidBodyMotionOptions::read(coefficients());
     if (!PetscSession::isInitialized())
         throw std::logic_error("rigidBodyMotionSolver: PETSc is not initialised (create a PetscSession first)");
     const ScopedPetscOptions petscOptions(options.petscOptionList);

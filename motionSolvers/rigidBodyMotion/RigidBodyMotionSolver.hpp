@@ -54,6 +54,10 @@ public:
     // group of nodes without any prescribed node holding it. PETSc must be initialised.
     RigidBodyMotionSolver(const PolyMesh& mesh, const io::Dictionary& coefficients,
                           const io::Dictionary* pointDisplacement, std::filesystem::path caseDirectory);
+    // The boundary described by a host that evaluates the boundary conditions itself
+    // (MotionSolver.hpp); the same errors.
+    RigidBodyMotionSolver(const PolyMesh& mesh, const io::Dictionary& coefficients, BoundaryDescription boundary,
+                          std::filesystem::path caseDirectory);
     ~RigidBodyMotionSolver() override;
 
     std::string_view typeName() const override { return typeNameString; }
@@ -80,6 +84,8 @@ public:
     Label initialInvertedCellCount() const;
 
 private:
+    void initialise();
+
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };

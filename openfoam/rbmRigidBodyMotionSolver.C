@@ -1,0 +1,276 @@
+#include "rbmRigidBodyMotionSolver.H"
+
+#include "IStringStream.H"
+#include "OStringStream.H"
+#include "addToRunTimeSelectionTable.H"
+#include "mapPolyMesh.H"
+#include "pointMesh.H"
+
+#include <stdexcept>
+#include <string>
+
+namespace Foam
+{
+    defineTypeNameAndDebug(rbmRigidBodyMotionSolver, 0);
+
+    addToRunTimeSelectionTable
+    (
+        motionSolver,
+        rbmRigidBodyMotionSolver,
+        dictionary
+    );
+
+    addToRunTimeSelectionTable
+    (
+        displacementMotionSolver,
+        rbmRigidBodyMotionSolver,
+        displacement
+    );
+}
+
+
+namespace
+{
+
+// The coefficient only the plugin knows (rbmMoveMesh has the -writeInvalid option instead).
+const Foam::word writeInvalidKeyword("writeInvalid");
+
+void appendNormals(std::vector<double>& normals, const Foam::vector& n, Foam::label count)
+{
+    for (Foam::label i = 0; i < count; ++i)
+    {
+        normals.push_back(n.x());
+        normals.push_back(n.y());
+        normals.push_back(n.z());
+    }
+}
+
+// fixedNormalSlip keeps its normal private: read it back from what the field writes.
+Foam::vector fixedNormalSlipNormal(const Foam::pointPatchField<Foam::vector>& field)
+{
+    Foam::OStringStream os;
+    field.write(os);
+    Foam::IStringStream is(os.str());
+    const Foam::dictionary dict(is);
+    return dict.get<Foam::vector>("n");
+}
+
+} // End anonymous namespace
+
+
+Foam::rbmRigidBodyMotionSolver::rbmRigidBodyMotionSolver
+(
+    const polyMesh& mesh,
+    const IOdictionary& dict
+)
+:
+    displacementMotionSolver(mesh, dict, typeName),
+    writeInvalid_(false),
+    stepCount_(0)
+{
+    construct();
+}
+
+
+Foam::rbmRigidBodyMotionSolver::rbmRigidBodyMotionSolver
+(
+    const polyMesh& mesh,
+    const IOdictionary& dict,
+    const pointVectorField& pointDisplacement,
+    const pointIOField& points0
+)
+:
+    displacementMotionSolver(mesh, dict, pointDisplacement, points0, typeName),
+    writeInvalid_(false),
+    stepCount_(0)
+{
+    construct();
+}
+
+
+Foam::rbmRigidBodyMotionSolver::~rbmRigidBodyMotionSolver() = default;
+
+
+void Foam::rbmRigidBodyMotionSolver::construct()
+{
+    const polyMesh& pMesh = mesh();
+
+    // The coefficients rbm reads: rbmMoveMesh's keywords, without the plugin's own.
+    dictionary coefficients(coeffDict());
+    writeInvalid_ = coefficients.lookupOrDefault<bool>(writeInvalidKeyword, false);
+    coefficients.remove(writeInvalidKeyword);
+    OStringStream text;
+    coefficients.write(text, false);
+
+    // The whole mesh in one numbering on every processor (the mesh itself when serial).
+    globalMesh_ = std::make_unique<rbmGlobalMesh>(pMesh, points0());
+    const rbmGlobalMesh& global = *globalMesh_;
+
+    const pointMesh& pm = pointDisplacement_.mesh();
+    std::vector<rbm::host::HostPatchBoundary> boundary(global.nRealPatches());
+    prescribedPatches_.assign(boundary.size(), false);
+    prescribedPoints_.setSize(pMesh.nPoints());
+    prescribedPoints_ = false;
+    for (label patchi = 0; patchi < global.nRealPatches(); ++patchi)
+    {
+        const polyPatch& patch = pMesh.boundaryMesh()[patchi];
+        const pointPatchField<vector>& field = pointDisplacement_.boundaryField()[patchi];
+        rbm::host::HostPatchBoundary& b = boundary[patchi];
+        const word& fieldType = field.type();
+        if (patch.coupled())
+        {
+            FatalErrorInFunction
+                << "rigidBodyMotionSolver: patch " << patch.name() << " is coupled (" << patch.type()
+                << "); rbm's motion solver does not support coupled patches (cyclic, ...) yet."
+                << exit(FatalError);
+        }
+        if (patch.type() == "empty" || patch.type() == "wedge")
+        {
+            b.nodeClass = rbm::host::HostNodeClass::ignored;
+        }
+        else if (field.fixesValue())
+        {
+            b.nodeClass = rbm::host::HostNodeClass::prescribed;
+            prescribedPatches_[patchi] = true;
+            for (const label pointi : pm.boundary()[patchi].meshPoints())
+            {
+                prescribedPoints_[pointi] = true;
+            }
+        }
+        else if (fieldType == "slip" || fieldType == "symmetry")
+        {
+            b.nodeClass = rbm::host::HostNodeClass::sliding;
+            b.mirror = fieldType == "symmetry";
+            b.slidingNormals = global.pointNormals(patchi);
+        }
+        else if (fieldType == "symmetryPlane")
+        {
+            b.nodeClass = rbm::host::HostNodeClass::sliding;
+            b.mirror = true;
+            appendNormals(b.slidingNormals, global.planeNormal(patchi), global.patchPointCount(patchi));
+        }
+        else if (fieldType == "fixedNormalSlip")
+        {
+            b.nodeClass = rbm::host::HostNodeClass::sliding;
+            appendNormals(b.slidingNormals, fixedNormalSlipNormal(field), global.patchPointCount(patchi));
+        }
+        else
+        {
+            b.nodeClass = rbm::host::HostNodeClass::free;
+        }
+    }
+
+    try
+    {
+        solver_ = std::make_unique<rbm::host::HostMotionSolver>
+        (
+            global.hostMesh(),
+            text.str(),
+            coeffDict().name(),
+            boundary,
+            pMesh.time().path()
+        );
+    }
+    catch (const rbm::host::HostInputError& error)
+    {
+        FatalIOErrorInFunction(coeffDict())
+            << error.what() << exit(FatalIOError);
+    }
+    catch (const std::exception& error)
+    {
+        FatalErrorInFunction
+            << "rigidBodyMotionSolver: " << error.what() << exit(FatalError);
+    }
+    Info<< "rigidBodyMotionSolver (rbm): " << global.nGlobalPoints() << " points"
+        << (Pstream::parRun() ? " gathered from the processors" : "") << ", solved in "
+        << solver_->dimension() << "D" << (writeInvalid_ ? ", writeInvalid yes" : "") << endl;
+}
+
+
+Foam::tmp<Foam::pointField>
+Foam::rbmRigidBodyMotionSolver::curPoints() const
+{
+    tmp<pointField> tcurPoints
+    (
+        points0() + pointDisplacement_.primitiveField()
+    );
+    twoDCorrectPoints(tcurPoints.ref());
+    return tcurPoints;
+}
+
+
+void Foam::rbmRigidBodyMotionSolver::solve()
+{
+    // The points have moved (OpenFOAM's displacement solvers do the same first).
+    movePoints(mesh().points());
+
+    // OpenFOAM evaluates the boundary conditions; the prescribing patches write their values
+    // into the internal field, the first patch last so that it wins on shared points (rbm's
+    // rule between prescribing patches).
+    pointDisplacement_.boundaryFieldRef().updateCoeffs();
+    for (label patchi = prescribedPatches_.size() - 1; patchi >= 0; --patchi)
+    {
+        if (prescribedPatches_[patchi])
+        {
+            pointDisplacement_.boundaryFieldRef()[patchi].evaluate(Pstream::commsTypes::blocking);
+        }
+    }
+
+    vectorField& u = pointDisplacement_.primitiveFieldRef();
+    globalMesh_->gather(u, prescribedPoints_, displacement_);
+
+    const Time& runTime = mesh().time();
+    rbm::host::HostStepReport report;
+    try
+    {
+        report = solver_->solve
+        (
+            static_cast<int>(++stepCount_),
+            runTime.value(),
+            runTime.timeName(),
+            displacement_.data(),
+            displacement_.size()
+        );
+    }
+    catch (const rbm::host::HostInputError& error)
+    {
+        FatalIOErrorInFunction(coeffDict())
+            << error.what() << exit(FatalIOError);
+    }
+    catch (const std::exception& error)
+    {
+        FatalErrorInFunction
+            << "rigidBodyMotionSolver: time " << runTime.timeName() << ": " << error.what()
+            << exit(FatalError);
+    }
+
+    globalMesh_->scatter(displacement_, u);
+
+    Info<< report.logLine.c_str() << endl;
+    if (!report.valid)
+    {
+        if (writeInvalid_ && report.finite)
+        {
+            WarningInFunction
+                << "rigidBodyMotionSolver: time " << runTime.timeName() << ": "
+                << report.problem.c_str() << nl
+                << "    writeInvalid yes: the run goes on with this mesh, which is NOT valid"
+                << " for a flow solver." << endl;
+        }
+        else
+        {
+            FatalErrorInFunction
+                << "rigidBodyMotionSolver: time " << runTime.timeName() << ": "
+                << report.problem.c_str() << exit(FatalError);
+        }
+    }
+}
+
+
+void Foam::rbmRigidBodyMotionSolver::updateMesh(const mapPolyMesh&)
+{
+    FatalErrorInFunction
+        << "rigidBodyMotionSolver (rbm) does not support topology changes (updateMesh):"
+        << " its cell-neighbour graph and RBM problem belong to the initial topology."
+        << exit(FatalError);
+}

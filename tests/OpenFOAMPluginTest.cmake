@@ -1,0 +1,262 @@
+# Tests of the OpenFOAM plugin librbmMotionSolver.so (registered in tests/CMakeLists.txt):
+#   cmake -DMODE=<mode> -DRBM_PLUGIN=<librbmMotionSolver.so or empty> -DRBM_MOVE_MESH=<exe>
+#         -DRBM_COMPARE_POINTS=<exe> -DRBM_SOURCE_DIR=<source tree> -DRBM_WORK_DIR=<scratch>
+#         -P OpenFOAMPluginTest.cmake
+# The expectation is always rbmMoveMesh's own output on the same case and options (an
+# independent front door over the same core: its boundary conditions are rbm's, the plugin's
+# are OpenFOAM's), or OpenFOAM's own behaviour:
+#   serial2D        naca4415 (4° about the trailing edge, pseudo-2D) with moveDynamicMesh: the
+#                   points equal rbmMoveMesh's to 1e-8 chord, the log line's figures too.
+#   serial3D        tutorials/cube (3D, 30 linearized sub-steps) with moveDynamicMesh: the points
+#                   equal rbmMoveMesh's to 1e-9 (cells are about 0.1 wide).
+#   flowSteps       tests/data/openfoamPlugin/oscillatingChannel: 5 steps of pimpleFoam (slip
+#                   sides, oscillatingDisplacement bottom, mesh fluxes); the points equal
+#                   rbmMoveMesh's to 1e-8.
+#   restart         naca4415Pitching shortened to 6 steps: moveDynamicMesh equals rbmMoveMesh at
+#                   every written time; a run stopped after 3 steps and restarted from its last
+#                   written time (startFrom latestTime) ends at the same mesh to 1e-8.
+#   badCoefficient  `coupling bogus;` stops moveDynamicMesh with OpenFOAM's FOAM FATAL IO ERROR
+#                   naming the dictionary and the entry; `writeInvalid maybe;` too.
+#   invertedCells   a rotation that inverts cells stops the run with a FatalError giving the
+#                   count; with `writeInvalid yes;` the run goes on and warns.
+#   parallel        the oscillatingChannel decomposed in two (decomposePar), 5 steps of
+#                   `mpirun -np 2 pimpleFoam -parallel`, reconstructPar: the points equal the
+#                   serial rbmMoveMesh's to 1e-8 (MPIEXEC: the mpiexec to use).
+# Without the plugin the test prints "skipped: OpenFOAM not installed" (CTest: skipped).
+cmake_minimum_required(VERSION 3.20)
+include(${CMAKE_CURRENT_LIST_DIR}/CopyCaseInputs.cmake)
+
+if(NOT RBM_PLUGIN)
+  message("skipped: OpenFOAM not installed (the plugin librbmMotionSolver.so was not built; "
+          "scripts/setup.sh installs libopenfoam and fetches its headers)")
+  return()
+endif()
+
+# Debian's OpenFOAM binaries (/usr/bin) find their etc/ files through WM_PROJECT_DIR; nothing
+# else of OpenFOAM's environment is needed.
+if(NOT DEFINED ENV{WM_PROJECT_DIR})
+  set(ENV{WM_PROJECT_DIR} /usr/share/openfoam)
+endif()
+
+function(fail message)
+  message(FATAL_ERROR "${message}")
+endfunction()
+
+function(expectContains text what where)
+  string(FIND "${text}" "${what}" at)
+  if(at EQUAL -1)
+    fail("${where} does not contain '${what}':\n${text}")
+  endif()
+endfunction()
+
+# A fresh copy of a case's inputs; its dynamicMeshDict loads the plugin by its full path.
+function(prepareCase source destination)
+  file(REMOVE_RECURSE ${destination})
+  copyCaseInputs(${source} ${destination})
+  file(READ ${destination}/constant/dynamicMeshDict text)
+  string(REGEX REPLACE "motionSolverLibs[^;]*;" "" text "${text}")
+  string(REGEX REPLACE "(\n[ \t]*motionSolver[ \t])" "\nmotionSolverLibs (\"${RBM_PLUGIN}\");\\1" text "${text}")
+  file(WRITE ${destination}/constant/dynamicMeshDict "${text}")
+endfunction()
+
+# runIn(<case> <expected: 0 or FAIL> <log name> command...): runs in the case folder, output in
+# ${name}_out (stdout and stderr together, as OpenFOAM writes errors to either).
+function(runIn case expected name)
+  execute_process(COMMAND ${ARGN} WORKING_DIRECTORY ${case}
+                  RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE out)
+  file(WRITE ${case}/log.${name} "${out}")
+  if(expected STREQUAL "FAIL")
+    if(status EQUAL 0)
+      fail("${ARGN} in ${case} succeeded, expected a failure:\n${out}")
+    endif()
+  elseif(NOT status EQUAL expected)
+    fail("${ARGN} in ${case}: exit status ${status}, expected ${expected}:\n${out}")
+  endif()
+  set(${name}_out "${out}" PARENT_SCOPE)
+endfunction()
+
+# comparePoints(<file A> <file B> <tolerance>): the largest point distance must not exceed it.
+function(comparePoints a b tolerance)
+  execute_process(COMMAND ${RBM_COMPARE_POINTS} ${a} ${b} ${tolerance}
+                  RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  message("${a} vs ${b}: ${out}${err}")
+  if(NOT status EQUAL 0)
+    fail("points differ by more than ${tolerance}: ${out}${err}")
+  endif()
+endfunction()
+
+function(setControl case keyword value)
+  file(READ ${case}/system/controlDict text)
+  string(REGEX REPLACE "\n${keyword}[ \t][^;]*;" "\n${keyword} ${value};" text "${text}")
+  file(WRITE ${case}/system/controlDict "${text}")
+endfunction()
+
+function(setCoefficients case entries)
+  file(READ ${case}/constant/dynamicMeshDict text)
+  string(REGEX REPLACE "rigidBodyMotionSolverCoeffs[ \t\n]*{[^}]*}"
+         "rigidBodyMotionSolverCoeffs\n{\n${entries}\n}" text "${text}")
+  file(WRITE ${case}/constant/dynamicMeshDict "${text}")
+endfunction()
+
+# The log line's figures before the wall time: "Time = 1 sub-steps ... inverted 0".
+function(stepFigures text time name)
+  string(REGEX MATCH "Time = ${time} +sub-steps[^\n]*inverted [0-9]+" line "${text}")
+  if(NOT line)
+    fail("no log line for time ${time}:\n${text}")
+  endif()
+  set(${name} "${line}" PARENT_SCOPE)
+endfunction()
+
+file(MAKE_DIRECTORY ${RBM_WORK_DIR})
+set(rbmCase ${RBM_WORK_DIR}/rbmMoveMesh)
+set(pluginCase ${RBM_WORK_DIR}/plugin)
+
+if(MODE STREQUAL "serial2D")
+  file(REMOVE_RECURSE ${rbmCase})
+  copyCaseInputs(${RBM_SOURCE_DIR}/tutorials/naca4415 ${rbmCase})
+  prepareCase(${RBM_SOURCE_DIR}/tutorials/naca4415 ${pluginCase})
+  runIn(${rbmCase} 0 rbmMoveMesh ${RBM_MOVE_MESH} -noVTK)
+  runIn(${pluginCase} 0 moveDynamicMesh moveDynamicMesh)
+  expectContains("${moveDynamicMesh_out}" "rigidBodyMotionSolver (rbm): 27150 points, solved in 2D" "moveDynamicMesh's log")
+  comparePoints(${rbmCase}/1/polyMesh/points.gz ${pluginCase}/1/polyMesh/points.gz 1e-8)
+  stepFigures("${rbmMoveMesh_out}" 1 rbmLine)
+  stepFigures("${moveDynamicMesh_out}" 1 pluginLine)
+  if(NOT rbmLine STREQUAL pluginLine)
+    fail("the plugin's log line differs from rbmMoveMesh's:\n  ${pluginLine}\n  ${rbmLine}")
+  endif()
+
+elseif(MODE STREQUAL "serial3D")
+  file(REMOVE_RECURSE ${rbmCase})
+  copyCaseInputs(${RBM_SOURCE_DIR}/tutorials/cube ${rbmCase})
+  prepareCase(${RBM_SOURCE_DIR}/tutorials/cube ${pluginCase})
+  runIn(${rbmCase} 0 rbmMoveMesh ${RBM_MOVE_MESH} -noVTK)
+  runIn(${pluginCase} 0 moveDynamicMesh moveDynamicMesh)
+  expectContains("${moveDynamicMesh_out}" "solved in 3D" "moveDynamicMesh's log")
+  comparePoints(${rbmCase}/1/polyMesh/points.gz ${pluginCase}/1/polyMesh/points.gz 1e-9)
+  stepFigures("${rbmMoveMesh_out}" 1 rbmLine)
+  stepFigures("${moveDynamicMesh_out}" 1 pluginLine)
+  if(NOT rbmLine STREQUAL pluginLine)
+    fail("the plugin's log line differs from rbmMoveMesh's:\n  ${pluginLine}\n  ${rbmLine}")
+  endif()
+
+elseif(MODE STREQUAL "flowSteps")
+  set(source ${RBM_SOURCE_DIR}/tests/data/openfoamPlugin/oscillatingChannel)
+  prepareCase(${source} ${pluginCase})
+  runIn(${pluginCase} 0 blockMesh blockMesh)
+  file(REMOVE_RECURSE ${rbmCase})
+  file(COPY ${pluginCase}/ DESTINATION ${rbmCase})
+  runIn(${rbmCase} 0 rbmMoveMesh ${RBM_MOVE_MESH} -noVTK)
+  runIn(${pluginCase} 0 pimpleFoam pimpleFoam)
+  # Five steps, each with the plugin's log line, and pimpleFoam's end.
+  foreach(time 0.005 0.01 0.015 0.02 0.025)
+    stepFigures("${pimpleFoam_out}" ${time} line)
+    expectContains("${line}" "inverted 0" "the log line of time ${time}")
+  endforeach()
+  expectContains("${pimpleFoam_out}" "\nEnd" "pimpleFoam's log")
+  if(NOT EXISTS ${pluginCase}/0.025/meshPhi)
+    fail("pimpleFoam wrote no mesh fluxes (0.025/meshPhi): the mesh did not move inside the flow solver")
+  endif()
+  comparePoints(${rbmCase}/0.025/polyMesh/points ${pluginCase}/0.025/polyMesh/points 1e-8)
+
+elseif(MODE STREQUAL "restart")
+  set(source ${RBM_SOURCE_DIR}/tutorials/naca4415Pitching)
+  file(REMOVE_RECURSE ${rbmCase})
+  copyCaseInputs(${source} ${rbmCase})
+  prepareCase(${source} ${pluginCase})
+  set(restartCase ${RBM_WORK_DIR}/restart)
+  prepareCase(${source} ${restartCase})
+  foreach(case ${rbmCase} ${pluginCase} ${restartCase})
+    setControl(${case} endTime 0.15)
+    setControl(${case} writeInterval 3)
+  endforeach()
+  runIn(${rbmCase} 0 rbmMoveMesh ${RBM_MOVE_MESH} -noVTK)
+  runIn(${pluginCase} 0 moveDynamicMesh moveDynamicMesh)
+  foreach(time 0.075 0.15)
+    comparePoints(${rbmCase}/${time}/polyMesh/points.gz ${pluginCase}/${time}/polyMesh/points.gz 1e-8)
+  endforeach()
+  # Stopped after three steps, restarted from the latest written time.
+  setControl(${restartCase} endTime 0.075)
+  runIn(${restartCase} 0 firstPart moveDynamicMesh)
+  setControl(${restartCase} endTime 0.15)
+  setControl(${restartCase} startFrom latestTime)
+  runIn(${restartCase} 0 secondPart moveDynamicMesh)
+  expectContains("${secondPart_out}" "Create mesh for time = 0.075" "the restart's log")
+  string(FIND "${secondPart_out}" "Time = 0.025 " rerun)
+  if(NOT rerun EQUAL -1)
+    fail("the restart ran from the start again:\n${secondPart_out}")
+  endif()
+  stepFigures("${secondPart_out}" 0.1 line)
+  comparePoints(${pluginCase}/0.15/polyMesh/points.gz ${restartCase}/0.15/polyMesh/points.gz 1e-8)
+
+elseif(MODE STREQUAL "badCoefficient")
+  prepareCase(${RBM_SOURCE_DIR}/tutorials/naca4415 ${pluginCase})
+  setCoefficients(${pluginCase} "    coupling bogus;")
+  runIn(${pluginCase} FAIL moveDynamicMesh moveDynamicMesh)
+  expectContains("${moveDynamicMesh_out}" "FOAM FATAL IO ERROR" "moveDynamicMesh's output")
+  expectContains("${moveDynamicMesh_out}" "coupling" "moveDynamicMesh's output")
+  expectContains("${moveDynamicMesh_out}" "bogus" "moveDynamicMesh's output")
+  expectContains("${moveDynamicMesh_out}" "dynamicMeshDict" "moveDynamicMesh's output")
+  if(EXISTS ${pluginCase}/1)
+    fail("a run with a bad coefficient wrote time 1")
+  endif()
+  setCoefficients(${pluginCase} "    writeInvalid maybe;")
+  runIn(${pluginCase} FAIL moveDynamicMesh moveDynamicMesh)
+  expectContains("${moveDynamicMesh_out}" "FOAM FATAL IO ERROR" "moveDynamicMesh's output")
+  expectContains("${moveDynamicMesh_out}" "maybe" "moveDynamicMesh's output")
+
+elseif(MODE STREQUAL "invertedCells")
+  # The thesis' uniform weights, linearized in one step, turning the airfoil 40°: cells invert.
+  set(coefficients "    coupling coupled;\n    formulation linearized;\n    weighting uniform;\n    subSteps 1;")
+  file(REMOVE_RECURSE ${rbmCase})
+  copyCaseInputs(${RBM_SOURCE_DIR}/tutorials/naca4415 ${rbmCase})
+  prepareCase(${RBM_SOURCE_DIR}/tutorials/naca4415 ${pluginCase})
+  foreach(case ${rbmCase} ${pluginCase})
+    setCoefficients(${case} "${coefficients}")
+    file(READ ${case}/0/pointDisplacement text)
+    string(REPLACE "0.0698131700797732" "0.698131700797732" text "${text}")
+    file(WRITE ${case}/0/pointDisplacement "${text}")
+  endforeach()
+  runIn(${rbmCase} 1 rbmMoveMesh ${RBM_MOVE_MESH} -noVTK)
+  string(REGEX MATCH "the moved mesh has ([0-9]+) inverted cell" match "${rbmMoveMesh_out}")
+  if(NOT match)
+    fail("rbmMoveMesh did not report inverted cells:\n${rbmMoveMesh_out}")
+  endif()
+  set(count ${CMAKE_MATCH_1})
+  runIn(${pluginCase} FAIL moveDynamicMesh moveDynamicMesh)
+  expectContains("${moveDynamicMesh_out}" "FOAM FATAL ERROR" "moveDynamicMesh's output")
+  expectContains("${moveDynamicMesh_out}" "the moved mesh has ${count} inverted cell" "moveDynamicMesh's output")
+  if(EXISTS ${pluginCase}/1)
+    fail("a step with inverted cells was written")
+  endif()
+  setCoefficients(${pluginCase} "${coefficients}\n    writeInvalid yes;")
+  runIn(${pluginCase} 0 moveDynamicMesh moveDynamicMesh)
+  expectContains("${moveDynamicMesh_out}" "the moved mesh has ${count} inverted cell" "moveDynamicMesh's output")
+  expectContains("${moveDynamicMesh_out}" "writeInvalid yes" "moveDynamicMesh's output")
+
+elseif(MODE STREQUAL "parallel")
+  set(source ${RBM_SOURCE_DIR}/tests/data/openfoamPlugin/oscillatingChannel)
+  prepareCase(${source} ${pluginCase})
+  runIn(${pluginCase} 0 blockMesh blockMesh)
+  file(REMOVE_RECURSE ${rbmCase})
+  file(COPY ${pluginCase}/ DESTINATION ${rbmCase})
+  runIn(${rbmCase} 0 rbmMoveMesh ${RBM_MOVE_MESH} -noVTK)
+  runIn(${pluginCase} 0 decomposePar decomposePar)
+  # Open MPI refuses root without --allow-run-as-root; 2 ranks on fewer cores need --oversubscribe.
+  execute_process(COMMAND id -u OUTPUT_VARIABLE uid OUTPUT_STRIP_TRAILING_WHITESPACE)
+  set(mpiOptions -np 2 --oversubscribe)
+  if(uid STREQUAL "0")
+    list(APPEND mpiOptions --allow-run-as-root)
+  endif()
+  runIn(${pluginCase} 0 pimpleFoam ${MPIEXEC} ${mpiOptions} -x WM_PROJECT_DIR pimpleFoam -parallel)
+  expectContains("${pimpleFoam_out}" "gathered from the processors" "pimpleFoam's log")
+  foreach(time 0.005 0.01 0.015 0.02 0.025)
+    stepFigures("${pimpleFoam_out}" ${time} line)
+    expectContains("${line}" "inverted 0" "the log line of time ${time}")
+  endforeach()
+  expectContains("${pimpleFoam_out}" "\nEnd" "pimpleFoam's log")
+  runIn(${pluginCase} 0 reconstructPar reconstructPar -latestTime)
+  comparePoints(${rbmCase}/0.025/polyMesh/points ${pluginCase}/0.025/polyMesh/points 1e-8)
+
+else()
+  fail("unknown MODE ${MODE}")
+endif()
