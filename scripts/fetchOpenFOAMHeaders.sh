@@ -50,7 +50,9 @@ download="$(mktemp -d "${TMPDIR:-/tmp}/rbm-openfoam-src.XXXXXX")"
 chmod 755 "$download"   # apt's _apt user downloads into it
 trap 'rm -rf "$download"' EXIT
 echo "fetchOpenFOAMHeaders: downloading Debian's openfoam source package"
-(cd "$download" && apt-get source --download-only -qq -o APT::Sandbox::User=root openfoam >/dev/null) ||
+fetchSource() { (cd "$download" && apt-get source --download-only -qq -o APT::Sandbox::User=root openfoam >/dev/null); }
+# A deb-src line whose index apt never downloaded: update once and try again.
+fetchSource || { [ "$(id -u)" -eq 0 ] && apt-get update -qq && fetchSource; } ||
   fail "apt-get source --download-only openfoam failed"
 shopt -s nullglob
 tarballs=("$download"/openfoam_*.orig.tar.*)
