@@ -43,6 +43,7 @@
 #include "PseudoTwoDExtraction.hpp"
 #include "QualityReport.hpp"
 #include "RbmProblem.hpp"
+#include "PatchBoundaryConditions.hpp"
 #include "RigidBodyMotionSolver.hpp"
 #include "Rotation.hpp"
 
@@ -886,7 +887,8 @@ Record runPitchingTask(const std::string& variant, int steps, const fs::path& ai
         io::Dictionary::parseText(pointDisplacementFile(pitchingBoundaryField("solidBodyMotionDisplacement")),
                                   "rbmBenchmark/0/pointDisplacement");
     started = Clock::now();
-    motion::RigidBodyMotionSolver solver(mesh, coefficients, &pointDisplacement, workDir);
+    motion::RigidBodyMotionSolver solver(mesh, coefficients,
+                                        motion::makePatchBoundaryConditions(mesh, &pointDisplacement, workDir), workDir);
     QualityEvaluator evaluator(mesh);
     record.set("constructSeconds", secondsSince(started));
 

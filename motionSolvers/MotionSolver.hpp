@@ -8,9 +8,9 @@
 //
 // The solver itself sees the boundary only through a BoundaryDescription (node class and
 // sliding planes per patch) and the prescribed values in pointDisplacement(). Who fills them:
-//  - from a case (rbmMoveMesh): the constructor with the field dictionary builds rbm's own
-//    patch conditions (boundaryMotion/); updateBoundaryConditions(t) evaluates them at time
-//    t, then solve();
+//  - from a case (rbmMoveMesh): the constructor with BoundaryConditions, rbm's own patch
+//    conditions of the field dictionary (boundaryMotion/PatchBoundaryConditions.hpp);
+//    updateBoundaryConditions(t) evaluates them at time t, then solve();
 //  - from C++ (a flow or structure solver): setPatchDisplacement() prescribes a patch's
 //    displacement directly every time step, then solve();
 //  - from a host that evaluates its own boundary conditions (the OpenFOAM plugin): the
@@ -20,6 +20,7 @@
 // Points on several patches: prescribed beats sliding beats free (a point on a moving wall
 // and on a symmetry plane moves with the wall).
 
+#include "BoundaryConditions.hpp"
 #include "BoundaryDescription.hpp"
 #include "FoamDictionary.hpp"
 #include "PolyMesh.hpp"
@@ -33,8 +34,6 @@
 #include <vector>
 
 namespace rbm::motion {
-
-class PointPatchDisplacement;
 
 // What one solve() did, for the per-time-step log line.
 struct MotionSolveReport {
@@ -52,11 +51,10 @@ struct MotionSolveReport {
 
 class MotionSolver {
 public:
-    // `pointDisplacement` is the field dictionary (0/pointDisplacement); nullptr means: every
-    // patch is fixedValue zero (empty and wedge patches excepted) until a host calls
-    // setPatchDisplacement.
-    MotionSolver(const PolyMesh& mesh, const io::Dictionary& coefficients, const io::Dictionary* pointDisplacement,
-                 std::filesystem::path caseDirectory);
+    // Boundary conditions rbm evaluates (boundaryMotion/PatchBoundaryConditions.hpp for
+    // 0/pointDisplacement: makePatchBoundaryConditions). Throws std::invalid_argument for none.
+    MotionSolver(const PolyMesh& mesh, const io::Dictionary& coefficients,
+                 std::unique_ptr<BoundaryConditions> conditions, std::filesystem::path caseDirectory);
     // A boundary described by the host, which evaluates the boundary conditions itself and
     // writes the prescribed displacements into pointDisplacement(); updateBoundaryConditions
     // and setPatchDisplacement are then errors. Throws std::invalid_argument when `boundary`
@@ -103,12 +101,8 @@ protected:
     std::vector<Vector3> points0_;
     std::vector<Vector3> pointDisplacement_;
     BoundaryDescription boundary_;
-    // rbm's own patch conditions (one per mesh patch), empty when the host describes the boundary.
-    std::vector<std::unique_ptr<PointPatchDisplacement>> patchConditions_;
-
-private:
-    // boundary_ from patchConditions_.
-    void describeBoundary();
+    // The conditions rbm evaluates; null when the host describes the boundary.
+    std::unique_ptr<BoundaryConditions> conditions_;
 };
 
 } // namespace rbm::motion

@@ -1,6 +1,8 @@
 #include "MotionSolverRegistry.hpp"
 
 #include "InputError.hpp"
+#include "PatchBoundaryConditions.hpp"
+#include "RigidBodyMotionSolver.hpp"
 
 #include <stdexcept>
 
@@ -39,6 +41,17 @@ std::unique_ptr<MotionSolver> MotionSolverRegistry::create(const PolyMesh& mesh,
     const io::Dictionary* coefficients = dynamicMeshDict.findDictionary(name + "Coeffs");
     const io::Dictionary empty(dynamicMeshDict.name() + "/" + name + "Coeffs", dynamicMeshDict.file(), 0);
     return factory->second(mesh, coefficients ? *coefficients : empty, pointDisplacement, caseDirectory);
+}
+
+void registerBuiltinMotionSolvers(MotionSolverRegistry& registry)
+{
+    registry.add(std::string(RigidBodyMotionSolver::typeNameString),
+                 [](const PolyMesh& mesh, const io::Dictionary& coefficients, const io::Dictionary* pointDisplacement,
+                    const std::filesystem::path& caseDirectory) -> std::unique_ptr<MotionSolver> {
+                     return std::make_unique<RigidBodyMotionSolver>(
+                         mesh, coefficients, makePatchBoundaryConditions(mesh, pointDisplacement, caseDirectory),
+                         caseDirectory);
+                 });
 }
 
 const MotionSolverRegistry& builtinMotionSolvers()

@@ -7,7 +7,6 @@
 #include "InputError.hpp"
 #include "LocalGlobalSolver.hpp"
 #include "MeshGeometry.hpp"
-#include "MotionSolverRegistry.hpp"
 #include "PetscSupport.hpp"
 #include "PseudoTwoDExtraction.hpp"
 #include "RbmEnergy.hpp"
@@ -818,9 +817,9 @@ void RigidBodyMotionSolver::Impl::solveInIncrements(std::span<const Vector3> tar
 // ---------------------------------------------------------------------------------------
 
 RigidBodyMotionSolver::RigidBodyMotionSolver(const PolyMesh& mesh, const io::Dictionary& coefficients,
-                                             const io::Dictionary* pointDisplacement,
+                                             std::unique_ptr<BoundaryConditions> conditions,
                                              std::filesystem::path caseDirectory)
-    : MotionSolver(mesh, coefficients, pointDisplacement, std::move(caseDirectory))
+    : MotionSolver(mesh, coefficients, std::move(conditions), std::move(caseDirectory))
 {
     initialise();
 }
@@ -890,17 +889,6 @@ MotionSolveReport RigidBodyMotionSolver::solve()
     report.invertedCellCount = impl.countInverted(impl.state.displacement, &report.worstQuality);
     report.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     return report;
-}
-
-// ---------------------------------------------------------------------------------------
-
-void registerBuiltinMotionSolvers(MotionSolverRegistry& registry)
-{
-    registry.add(std::string(RigidBodyMotionSolver::typeNameString),
-                 [](const PolyMesh& mesh, const io::Dictionary& coefficients, const io::Dictionary* pointDisplacement,
-                    const std::filesystem::path& caseDirectory) -> std::unique_ptr<MotionSolver> {
-                     return std::make_unique<RigidBodyMotionSolver>(mesh, coefficients, pointDisplacement, caseDirectory);
-                 });
 }
 
 } // namespace rbm::motion

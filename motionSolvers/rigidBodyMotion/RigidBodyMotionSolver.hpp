@@ -53,7 +53,7 @@ public:
     // one-layer extrusion, unknown stiffening patches, or boundary conditions that leave a
     // group of nodes without any prescribed node holding it. PETSc must be initialised.
     RigidBodyMotionSolver(const PolyMesh& mesh, const io::Dictionary& coefficients,
-                          const io::Dictionary* pointDisplacement, std::filesystem::path caseDirectory);
+                          std::unique_ptr<BoundaryConditions> conditions, std::filesystem::path caseDirectory);
     // The boundary described by a host that evaluates the boundary conditions itself
     // (MotionSolver.hpp); the same errors.
     RigidBodyMotionSolver(const PolyMesh& mesh, const io::Dictionary& coefficients, BoundaryDescription boundary,
