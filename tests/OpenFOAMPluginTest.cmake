@@ -129,6 +129,17 @@ function(compareOneStep tutorial tolerance expected)
   endif()
 endfunction()
 
+# The oscillating channel (tests/data/openfoamPlugin) meshed by blockMesh for the plugin's run,
+# and the same case moved by rbmMoveMesh as the reference.
+macro(prepareChannelWithReference)
+  set(source ${RBM_SOURCE_DIR}/tests/data/openfoamPlugin/oscillatingChannel)
+  prepareCase(${source} ${pluginCase})
+  runIn(${pluginCase} 0 blockMesh blockMesh)
+  file(REMOVE_RECURSE ${rbmCase})
+  file(COPY ${pluginCase}/ DESTINATION ${rbmCase})
+  runIn(${rbmCase} 0 rbmMoveMesh ${RBM_MOVE_MESH} -noVTK)
+endmacro()
+
 if(MODE STREQUAL "serial2D")
   compareOneStep(naca4415 1e-8 "rigidBodyMotionSolver (rbm): 27150 points, solved in 2D")
 
@@ -136,12 +147,7 @@ elseif(MODE STREQUAL "serial3D")
   compareOneStep(cube 1e-9 "solved in 3D")
 
 elseif(MODE STREQUAL "flowSteps")
-  set(source ${RBM_SOURCE_DIR}/tests/data/openfoamPlugin/oscillatingChannel)
-  prepareCase(${source} ${pluginCase})
-  runIn(${pluginCase} 0 blockMesh blockMesh)
-  file(REMOVE_RECURSE ${rbmCase})
-  file(COPY ${pluginCase}/ DESTINATION ${rbmCase})
-  runIn(${rbmCase} 0 rbmMoveMesh ${RBM_MOVE_MESH} -noVTK)
+  prepareChannelWithReference()
   runIn(${pluginCase} 0 pimpleFoam pimpleFoam)
   # Five steps, each with the plugin's log line, and pimpleFoam's end.
   foreach(time 0.005 0.01 0.015 0.02 0.025)
@@ -232,12 +238,7 @@ elseif(MODE STREQUAL "invertedCells")
   expectContains("${moveDynamicMesh_out}" "writeInvalid yes" "moveDynamicMesh's output")
 
 elseif(MODE STREQUAL "parallel")
-  set(source ${RBM_SOURCE_DIR}/tests/data/openfoamPlugin/oscillatingChannel)
-  prepareCase(${source} ${pluginCase})
-  runIn(${pluginCase} 0 blockMesh blockMesh)
-  file(REMOVE_RECURSE ${rbmCase})
-  file(COPY ${pluginCase}/ DESTINATION ${rbmCase})
-  runIn(${rbmCase} 0 rbmMoveMesh ${RBM_MOVE_MESH} -noVTK)
+  prepareChannelWithReference()
   runIn(${pluginCase} 0 decomposePar decomposePar)
   # Open MPI refuses root without --allow-run-as-root; 2 ranks on fewer cores need --oversubscribe.
   execute_process(COMMAND id -u OUTPUT_VARIABLE uid OUTPUT_STRIP_TRAILING_WHITESPACE)
