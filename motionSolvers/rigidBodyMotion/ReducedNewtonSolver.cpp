@@ -2,7 +2,9 @@
 
 #include "BlockRowLayout.hpp"
 #include "LocalGlobalSolver.hpp"
+#include "PlanarReducedKernels.hpp"
 #include "ReducedLinearizedOperator.hpp"
+#include "SparseCholesky.hpp"
 #include "ThreadCount.hpp"
 
 #include <algorithm>
@@ -102,6 +104,7 @@ ReducedNewtonSolver::ReducedNewtonSolver(const RbmProblem& problem, ReducedNewto
             if (transposeEdge_[e] < 0) throw std::invalid_argument("ReducedNewtonSolver: the graph is not symmetric");
         }
     if (problem.unknownNodeCount() == 0) return;
+    if (dim == 2) planar_ = std::make_unique<PlanarReducedKernels>(problem);
 
     // K: the displacement block of the Hessian, factorised once (file comment).
     const BlockPattern& pattern = problem.blockPattern();
@@ -110,11 +113,18 @@ ReducedNewtonSolver::ReducedNewtonSolver(const RbmProblem& problem, ReducedNewto
     const int blockSize = vectorSystem_ ? dim : 1;
     PetscMPIInt ranks = 1;
     RBM_CHECK_PETSC(MPI_Comm_size(solverCommunicator(), &ranks));
+    // Whether the user chose the factorisation's package (-rbm_reduced_… or the global option).
+    PetscBool packageChosen = PETSC_FALSE, globalPackageChosen = PETSC_FALSE;
+    RBM_CHECK_PETSC(PetscOptionsHasName(nullptr, "rbm_reduced_", "-pc_factor_mat_solver_type", &packageChosen));
+    RBM_CHECK_PETSC(PetscOptionsHasName(nullptr, nullptr, "-pc_factor_mat_solver_type", &globalPackageChosen));
+    packageChosen = packageChosen || globalPackageChosen ? PETSC_TRUE : PETSC_FALSE;
 #if defined(PETSC_HAVE_SUITESPARSE)
     // One rank, scalar K: CHOLMOD's supernodal Cholesky. On the 40k-node airfoil its
     // back-substitution costs 6.5 MFlop against MUMPS's 350 (PETSc's flop count, -log_view), and
     // the back-substitutions are most of this solver's work.
-    if (!vectorSystem_ && ranks == 1) {
+    // (Not needed where rbm factorises K itself, below; the option would also outlive this
+    // solver and read as the user's choice to the next one.)
+    if (!vectorSystem_ && ranks == 1 && !SparseCholesky::available()) {
         laplacianOptions_ = std::make_unique<InheritedOptions>("reduced");
         laplacianOptions_->addDefault("pc_factor_mat_solver_type", "cholmod");
     }
@@ -134,6 +144,11 @@ ReducedNewtonSolver::ReducedNewtonSolver(const RbmProblem& problem, ReducedNewto
     }
     // One rank and a factorisation (not the user's choice of an iterative method): all components at once.
     multipleRightHandSides_ = !vectorSystem_ && system_->isDirect() && ranks == 1;
+    // ... and, unless the user chose the factorisation's package, rbm's own back-substitution on
+    // CHOLMOD's factor (SparseCholesky.hpp: 3–5× faster than MatMatSolve for 2–3 components).
+    if (multipleRightHandSides_ && SparseCholesky::available() && !packageChosen)
+        cholesky_ = std::make_unique<SparseCholesky>(problem.unknownNodeCount(), pattern.rowOffsets, pattern.columns,
+                                                     laplacian_);
     componentIn_.resize(problem.unknownNodeCount());
     componentOut_.resize(problem.unknownNodeCount());
 }
@@ -142,6 +157,7 @@ ReducedNewtonSolver::~ReducedNewtonSolver() = default;
 
 double ReducedNewtonSolver::fitAndEnergy(std::span<const Vector3> displacement, std::vector<Matrix3>& rotations) const
 {
+    if (planar_) return planar_->fitAndEnergy(displacement, rotations);
     fitNodeRotations(problem_, displacement, rotations);
     const CellNeighbourGraph& graph = problem_.graph();
     const std::vector<Vector3>& x = problem_.referencePoints();
@@ -170,6 +186,11 @@ double ReducedNewtonSolver::fitAndEnergy(std::span<const Vector3> displacement, 
 void ReducedNewtonSolver::gradient(std::span<const Vector3> displacement, std::span<const Matrix3> rotations,
                                    std::span<double> g) const
 {
+    if (planar_) {
+        planar_->gradient(displacement, rotations, g);
+        problem_.projectSliding(g, problem_.dimension());
+        return;
+    }
     const CellNeighbourGraph& graph = problem_.graph();
     const std::vector<Vector3>& x = problem_.referencePoints();
     const std::vector<int>& nodes = problem_.unknownNodes();
@@ -197,6 +218,10 @@ void ReducedNewtonSolver::gradient(std::span<const Vector3> displacement, std::s
 
 void ReducedNewtonSolver::prepareHessian(std::span<const Vector3> displacement, std::span<const Matrix3> rotations)
 {
+    if (planar_) {
+        planar_->prepareHessian(displacement, rotations);
+        return;
+    }
     const CellNeighbourGraph& graph = problem_.graph();
     const std::vector<Vector3>& x = problem_.referencePoints();
     const std::vector<int>& nodes = problem_.unknownNodes();
@@ -236,6 +261,11 @@ void ReducedNewtonSolver::applyHessian(std::span<const double> v, std::span<doub
     std::vector<double>& projected = projected_;
     projected.assign(v.begin(), v.end());
     problem_.projectSliding(projected, dim);
+    if (planar_) {
+        planar_->applyHessian(projected, y);
+        problem_.projectSliding(y, dim);
+        return;
+    }
     // Prescribed entries of nodeVector_ and nodeRotation_ stay zero.
     for (int a = 0; a < m; ++a) {
         Vector3& value = nodeVector_[nodes[a]];
@@ -273,6 +303,10 @@ bool ReducedNewtonSolver::precondition(std::span<const double> r, std::span<doub
 {
     const int m = problem_.unknownNodeCount();
     const int dim = problem_.dimension();
+    if (cholesky_) {
+        cholesky_->solve(r, z, dim);  // compact vectors are interleaved by node already
+        return true;
+    }
     if (!vectorSystem_ && multipleRightHandSides_) {
         // Every component in one back-substitution (MatMatSolve): the factor is read once.
         if (!factor_) {

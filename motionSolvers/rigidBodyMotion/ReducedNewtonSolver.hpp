@@ -52,8 +52,10 @@
 // energy = E.
 
 #include "PetscSupport.hpp"
+#include "PlanarReducedKernels.hpp"
 #include "RbmEnergy.hpp"
 #include "RbmProblem.hpp"
+#include "SparseCholesky.hpp"
 
 #include <array>
 #include <memory>
@@ -108,6 +110,8 @@ private:
     std::unique_ptr<BlockSystemSolver> system_;
     bool vectorSystem_ = false;  // sliding nodes: K ⊗ I projected, one system
     bool multipleRightHandSides_ = false;  // K factorised on one rank: MatMatSolve on all components
+    std::unique_ptr<PlanarReducedKernels> planar_;  // the 2D kernels (PlanarReducedKernels.hpp)
+    std::unique_ptr<SparseCholesky> cholesky_;  // K's factor, when one rank factorises the scalar K
     Mat factor_ = nullptr;                 // the factor inside system_'s PC (not owned)
     PetscMat components_, solutions_;      // dense m × dimension right-hand sides and solutions
     std::vector<std::array<double, 9>> rotationMaps_;  // per unknown node: H_δδ⁻¹ (or its axis restriction)

@@ -1,0 +1,195 @@
+#include "PlanarReducedKernels.hpp"
+
+#include "ThreadCount.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace rbm::motion {
+
+PlanarReducedKernels::PlanarReducedKernels(const RbmProblem& problem)
+    : problem_(problem), unknownCount_(problem.unknownNodeCount())
+{
+    if (problem.dimension() != 2) throw std::invalid_argument("PlanarReducedKernels: the problem is not planar");
+    const CellNeighbourGraph& graph = problem.graph();
+    const std::vector<Vector3>& x = problem.referencePoints();
+    const std::vector<int>& nodes = problem.unknownNodes();
+    const std::vector<int>& unknownIndex = problem.unknownIndex();
+    const int m = unknownCount_;
+    offsets_.assign(m + 1, 0);
+    for (int a = 0; a < m; ++a)
+        offsets_[a + 1] = offsets_[a] + (graph.offsets[nodes[a] + 1] - graph.offsets[nodes[a]]);
+    edges_.resize(offsets_[m]);
+    for (int a = 0; a < m; ++a) {
+        const int i = nodes[a];
+        for (int e = graph.offsets[i], position = offsets_[a]; e < graph.offsets[i + 1]; ++e, ++position) {
+            const int j = graph.neighbours[e];
+            edges_[position] = {x[j].x - x[i].x, x[j].y - x[i].y, problem.edgeWeights()[e], j,
+                                unknownIndex[j] >= 0 ? unknownIndex[j] : m};
+        }
+    }
+    const int zeroEdge = static_cast<int>(edges_.size());
+    transpose_.assign(edges_.size(), zeroEdge);
+    for (int a = 0; a < m; ++a)
+        for (int position = offsets_[a]; position < offsets_[a + 1]; ++position) {
+            const int b = edges_[position].compact;
+            if (b == m) continue;
+            for (int back = offsets_[b]; back < offsets_[b + 1]; ++back)
+                if (edges_[back].compact == a) transpose_[position] = back;
+            if (transpose_[position] == zeroEdge)
+                throw std::invalid_argument("PlanarReducedKernels: the graph is not symmetric");
+        }
+    rotated_.assign(2 * edges_.size() + 2, 0.0);
+    inverseCurvature_.assign(m, 0.0);
+    nodeEnergy_.assign(m, 0.0);
+    padded_.assign(2 * static_cast<std::size_t>(m) + 2, 0.0);
+    turn_.assign(static_cast<std::size_t>(m) + 1, 0.0);
+}
+
+double PlanarReducedKernels::fitAndEnergy(std::span<const Vector3> displacement, std::vector<Matrix3>& rotations)
+{
+    rotations.resize(problem_.nodeCount(), Matrix3::identity());
+    const std::vector<int>& nodes = problem_.unknownNodes();
+    const int m = unknownCount_;
+    const Edge* edges = edges_.data();
+#pragma omp parallel for schedule(static) if (worthThreading(edges_.size()))
+    for (int a = 0; a < m; ++a) {
+        const int i = nodes[a];
+        const double ux = displacement[i].x, uy = displacement[i].y;
+        double crossSum = 0.0, dotSum = 0.0;
+        for (int position = offsets_[a]; position < offsets_[a + 1]; ++position) {
+            const Edge& edge = edges[position];
+            const double ex = edge.dx + displacement[edge.node].x - ux;
+            const double ey = edge.dy + displacement[edge.node].y - uy;
+            crossSum += edge.weight * (edge.dx * ey - edge.dy * ex);
+            dotSum += edge.weight * (edge.dx * ex + edge.dy * ey);
+        }
+        // The planar local step (LocalGlobalSolver: bestPlanarAngle).
+        const double angle = std::atan2(crossSum, dotSum);
+        const double c = std::cos(angle), s = std::sin(angle);
+        double energy = 0.0;
+        for (int position = offsets_[a]; position < offsets_[a + 1]; ++position) {
+            const Edge& edge = edges[position];
+            const double rx = edge.dx + displacement[edge.node].x - ux - (c * edge.dx - s * edge.dy);
+            const double ry = edge.dy + displacement[edge.node].y - uy - (s * edge.dx + c * edge.dy);
+            energy += edge.weight * (rx * rx + ry * ry);
+        }
+        nodeEnergy_[a] = energy;
+        Matrix3& r = rotations[i];
+        r = Matrix3::identity();
+        r.m[0][0] = c;
+        r.m[0][1] = -s;
+        r.m[1][0] = s;
+        r.m[1][1] = c;
+    }
+    double sum = 0.0;
+    for (int a = 0; a < m; ++a) sum += nodeEnergy_[a];
+    return 0.5 * sum;
+}
+
+void PlanarReducedKernels::gradient(std::span<const Vector3> displacement, std::span<const Matrix3> rotations,
+                                    std::span<double> g) const
+{
+    const std::vector<int>& nodes = problem_.unknownNodes();
+    const int m = unknownCount_;
+    const Edge* edges = edges_.data();
+#pragma omp parallel for schedule(static) if (worthThreading(edges_.size()))
+    for (int a = 0; a < m; ++a) {
+        const int k = nodes[a];
+        const double ux = displacement[k].x, uy = displacement[k].y;
+        const double c = rotations[k].m[0][0], s = rotations[k].m[1][0];
+        double gx = 0.0, gy = 0.0;
+        for (int position = offsets_[a]; position < offsets_[a + 1]; ++position) {
+            const Edge& edge = edges[position];
+            const bool unknown = edge.compact != m;
+            const double both = unknown ? 2.0 : 1.0;
+            // (1 + t)(u_k − u_j − d) + R_k d + t R_j d
+            double tx = both * (ux - displacement[edge.node].x - edge.dx) + c * edge.dx - s * edge.dy;
+            double ty = both * (uy - displacement[edge.node].y - edge.dy) + s * edge.dx + c * edge.dy;
+            if (unknown) {
+                const Matrix3& rj = rotations[edge.node];
+                tx += rj.m[0][0] * edge.dx - rj.m[1][0] * edge.dy;
+                ty += rj.m[1][0] * edge.dx + rj.m[0][0] * edge.dy;
+            }
+            gx += edge.weight * tx;
+            gy += edge.weight * ty;
+        }
+        g[2 * static_cast<std::size_t>(a)] = gx;
+        g[2 * static_cast<std::size_t>(a) + 1] = gy;
+    }
+}
+
+void PlanarReducedKernels::prepareHessian(std::span<const Vector3> displacement, std::span<const Matrix3> rotations)
+{
+    const std::vector<int>& nodes = problem_.unknownNodes();
+    const int m = unknownCount_;
+    const Edge* edges = edges_.data();
+    double* rotated = rotated_.data();
+#pragma omp parallel for schedule(static) if (worthThreading(edges_.size()))
+    for (int a = 0; a < m; ++a) {
+        const int i = nodes[a];
+        const double ux = displacement[i].x, uy = displacement[i].y;
+        const double c = rotations[i].m[0][0], s = rotations[i].m[1][0];
+        double curvature = 0.0;
+        for (int position = offsets_[a]; position < offsets_[a + 1]; ++position) {
+            const Edge& edge = edges[position];
+            const double qx = c * edge.dx - s * edge.dy;
+            const double qy = s * edge.dx + c * edge.dy;
+            rotated[2 * static_cast<std::size_t>(position)] = qx;
+            rotated[2 * static_cast<std::size_t>(position) + 1] = qy;
+            const double ex = edge.dx + displacement[edge.node].x - ux;
+            const double ey = edge.dy + displacement[edge.node].y - uy;
+            curvature += edge.weight * (qx * ex + qy * ey);
+        }
+        // At a best fit H_δδ ≥ 0; where it is not positive the node's turn is left out (S = K
+        // there), which keeps S positive definite and the step a descent direction.
+        inverseCurvature_[a] = curvature > 0.0 ? 1.0 / curvature : 0.0;
+    }
+}
+
+void PlanarReducedKernels::applyHessian(std::span<const double> v, std::span<double> y)
+{
+    const int m = unknownCount_;
+    if (v.size() != 2 * static_cast<std::size_t>(m) || y.size() != v.size())
+        throw std::invalid_argument("PlanarReducedKernels: applyHessian with vectors of the wrong size");
+    double* padded = padded_.data();  // the zero slot m stays zero
+    for (std::size_t k = 0; k < v.size(); ++k) padded[k] = v[k];
+    const Edge* edges = edges_.data();
+    const double* rotated = rotated_.data();
+    const int* transpose = transpose_.data();
+    double* turn = turn_.data();  // the zero slot m stays zero
+#pragma omp parallel for schedule(static) if (worthThreading(edges_.size()))
+    for (int a = 0; a < m; ++a) {
+        const double vx = padded[2 * a], vy = padded[2 * a + 1];
+        double b = 0.0;
+        for (int position = offsets_[a]; position < offsets_[a + 1]; ++position) {
+            const Edge& edge = edges[position];
+            const double* vj = padded + 2 * static_cast<std::size_t>(edge.compact);
+            const double* q = rotated + 2 * static_cast<std::size_t>(position);
+            b += edge.weight * (q[0] * (vj[1] - vy) - q[1] * (vj[0] - vx));
+        }
+        turn[a] = inverseCurvature_[a] * b;
+    }
+#pragma omp parallel for schedule(static) if (worthThreading(edges_.size()))
+    for (int a = 0; a < m; ++a) {
+        const double vx = padded[2 * a], vy = padded[2 * a + 1];
+        const double ya = turn[a];
+        double sx = 0.0, sy = 0.0;
+        for (int position = offsets_[a]; position < offsets_[a + 1]; ++position) {
+            const Edge& edge = edges[position];
+            const double* vj = padded + 2 * static_cast<std::size_t>(edge.compact);
+            const double* q = rotated + 2 * static_cast<std::size_t>(position);
+            const double* qBack = rotated + 2 * static_cast<std::size_t>(transpose[position]);
+            const double yj = turn[edge.compact];
+            const double both = edge.compact != m ? 2.0 : 1.0;
+            // (1 + t)(v_a − v_j) + y_a ẑ × q − t y_j ẑ × q_back, ẑ × q = (−q_y, q_x); the zero
+            // slot and the zero edge make the last term vanish for a prescribed neighbour.
+            sx += edge.weight * (both * (vx - vj[0]) - ya * q[1] + yj * qBack[1]);
+            sy += edge.weight * (both * (vy - vj[1]) + ya * q[0] - yj * qBack[0]);
+        }
+        y[2 * static_cast<std::size_t>(a)] = sx;
+        y[2 * static_cast<std::size_t>(a) + 1] = sy;
+    }
+}
+
+} // namespace rbm::motion
