@@ -73,6 +73,12 @@ struct ReducedNewtonOptions {
     // When K is solved iteratively (3D above 20 000 unknown nodes: CG + GAMG): K⁻¹ is only the
     // preconditioner of a flexible CG, which needs no exact inverse.
     double laplacianRelativeTolerance = 1e-4;
+    // Converged when no node's estimated remaining displacement, |K⁻¹ P∇Ẽ| at the node, exceeds
+    // displacementTolerance × its shortest edge (≤ 0: off, only the gradient tests above).
+    // Mesh motion needs positions to a small fraction of the local cell, not the rounding level
+    // of the 1/|d|²-weighted gradient, which on a boundary-layer mesh costs twice the CG
+    // iterations (docs/motionSolver.md, "Reduced Newton").
+    double displacementTolerance = 0.0;
 };
 
 class ReducedNewtonSolver : public RbmSolver {
@@ -100,8 +106,11 @@ private:
     // z = P K⁻¹ P r (compact vectors); returns false if an iterative Laplacian solve failed.
     bool precondition(std::span<const double> r, std::span<double> z);
     // Projected conjugate gradients on S s = −g to ‖S s + g‖ ≤ forcing ‖g‖; see the file comment.
-    bool newtonDirection(std::span<const double> g, double forcing,
+    // firstPreconditioned: K⁻¹(−g) when the caller has it (else computed here).
+    bool newtonDirection(std::span<const double> g, double forcing, const std::vector<double>* firstPreconditioned,
                          std::span<double> step, int& iterations, bool& negativeCurvature);
+    // max over unknown nodes of |v_node| / (the node's shortest edge), v compact.
+    double largestRelativeDisplacement(std::span<const double> v) const;
 
     const RbmProblem& problem_;
     ReducedNewtonOptions options_;
@@ -123,6 +132,8 @@ private:
     // Work arrays (node-indexed).
     std::vector<Vector3> nodeVector_, nodeRotation_;
     std::vector<double> componentIn_, componentOut_, projected_;
+    std::vector<double> inverseShortestEdge_;  // per unknown node, for displacementTolerance
+    std::vector<double> cgResidual_, cgPreconditioned_, cgPreviousPreconditioned_, cgDirection_, cgProduct_;
 };
 
 } // namespace rbm::motion

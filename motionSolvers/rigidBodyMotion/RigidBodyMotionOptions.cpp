@@ -180,7 +180,7 @@ const std::vector<std::string_view>& RigidBodyMotionOptions::keywords()
 {
     static const std::vector<std::string_view> words{
         "coupling",  "formulation",   "algorithm",         "weighting",     "subSteps",
-        "maxSubStepSplits", "maxSubSteps", "tolerance", "relativeTolerance", "maxIterations",
+        "maxSubStepSplits", "maxSubSteps", "tolerance", "relativeTolerance", "displacementTolerance", "maxIterations",
         "linearSolver", "petscOptions", "stiffening", "untangle"};
     return words;
 }
@@ -253,6 +253,10 @@ RigidBodyMotionOptions RigidBodyMotionOptions::read(const io::Dictionary& coeffi
             options.tolerance = readPositiveScalar(entry);
         } else if (keyword == "relativeTolerance") {
             options.relativeTolerance = readPositiveScalar(entry);
+        } else if (keyword == "displacementTolerance") {
+            // 0 switches the displacement test off, so 0 is valid here.
+            const bool zero = !entry.isDictionary() && entry.valueText() == "0";
+            options.displacementTolerance = zero ? 0.0 : readPositiveScalar(entry);
         } else if (keyword == "maxIterations") {
             options.maxIterations = readCount(entry, 1);
         } else if (keyword == "linearSolver") {

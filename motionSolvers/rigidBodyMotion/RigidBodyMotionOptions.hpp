@@ -15,6 +15,8 @@
 //         maxSubSteps       100;                  // auto: cap of the thesis' count
 //         tolerance         1e-11;                // nonlinear convergence, relative to the cell size
 //         relativeTolerance 1e-10;                // Newton's gradient reduction; Krylov tolerance
+//         displacementTolerance 0;                // reduced Newton: also converged when no node's
+//                                                 //   estimated error exceeds this × its shortest edge
 //         maxIterations     50;                   // nonlinear iterations (per sub-step)
 //         linearSolver      automatic;            // automatic | direct | iterative | matrixFree
 //         petscOptions      "-ksp_type cg -pc_type gamg";
@@ -86,6 +88,7 @@ struct RigidBodyMotionOptions {
     int maxSubSteps = 100;
     double tolerance = 1e-11;
     std::optional<double> relativeTolerance;
+    double displacementTolerance = 0.0;  // 0: off (ReducedNewtonOptions::displacementTolerance)
     std::optional<int> maxIterations;
     LinearSolverKind linearSolver = LinearSolverKind::automatic;
     std::string petscOptions;                                        // as written

@@ -561,6 +561,7 @@ std::unique_ptr<RbmSolver> RigidBodyMotionSolver::Impl::makeSolver(const RbmProb
         reduced.linearSolver = options.linearSolver;
         reduced.relativeTolerance = newton.relativeTolerance;
         reduced.absoluteTolerance = newton.absoluteTolerance;
+        reduced.displacementTolerance = options.displacementTolerance;
         if (options.maxIterations) reduced.maximumIterations = *options.maxIterations;
         return std::make_unique<ReducedNewtonSolver>(forProblem, reduced);
     }
