@@ -332,6 +332,10 @@ TEST(RigidBodyMotionSolverSelection, BadValuesListTheValidValues)
     EXPECT_NE(errorOf([&] { read("subSteps some;"); }).find("auto, or a positive integer"), std::string::npos);
     EXPECT_NE(errorOf([&] { read("subSteps 0;"); }).find("at least 1"), std::string::npos);
     EXPECT_NE(errorOf([&] { read("tolerance -1;"); }).find("positive"), std::string::npos);
+    EXPECT_NE(errorOf([&] { read("displacementTolerance -1e-6;"); }).find("positive"), std::string::npos);
+    EXPECT_EQ(read("displacementTolerance 1e-6;").displacementTolerance, 1e-6);
+    EXPECT_EQ(read("displacementTolerance 0;").displacementTolerance, 0.0);
+    EXPECT_EQ(read("").displacementTolerance, 0.0);  // off unless asked for
     EXPECT_NE(errorOf([&] { read("stiffening quadraticInverseDistance (a);"); }).find("inverseDistance (patch ...)"),
               std::string::npos);
     EXPECT_NE(errorOf([&] { read("petscOptions \"ksp_type cg\";"); }).find("expected an option name"), std::string::npos);
