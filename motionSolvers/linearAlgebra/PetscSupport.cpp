@@ -182,6 +182,12 @@ void InheritedOptions::hold(const std::string& name, const std::string& value) c
     copies_.push_back(name);
 }
 
+bool InheritedOptions::isHeldCopy(const std::string& name)
+{
+    const auto found = copiedOptionHolders().find(name);
+    return found != copiedOptionHolders().end() && found->second > 0;
+}
+
 InheritedOptions::~InheritedOptions()
 {
     for (const std::string& name : copies_) {

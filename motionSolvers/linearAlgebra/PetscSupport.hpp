@@ -119,6 +119,10 @@ public:
     // rbm's own defaults; const as the copies are: they belong to the options database.
     void addDefault(std::string_view stem, std::string_view value) const;
 
+    // Whether the option `name` ("-rbm_reduced_ksp_type") is one of these copies or defaults,
+    // held by some living InheritedOptions, rather than the user's own.
+    static bool isHeldCopy(const std::string& name);
+
 private:
     void hold(const std::string& name, const std::string& value) const;
 

@@ -105,17 +105,21 @@ ReducedNewtonSolver::ReducedNewtonSolver(const RbmProblem& problem, ReducedNewto
     nodeVector_.assign(n, Vector3{});
     nodeRotation_.assign(n, Vector3{});
     rotationMaps_.assign(problem.unknownNodeCount(), {});
-    edgeRotated_.assign(graph.neighbours.size(), Vector3{});
-    transposeEdge_.assign(graph.neighbours.size(), -1);
-    for (int i = 0; i < n; ++i)
-        for (int e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e) {
-            const int j = graph.neighbours[e];
-            for (int f = graph.offsets[j]; f < graph.offsets[j + 1]; ++f)
-                if (graph.neighbours[f] == i) transposeEdge_[e] = f;
-            if (transposeEdge_[e] < 0) throw std::invalid_argument("ReducedNewtonSolver: the graph is not symmetric");
-        }
     if (problem.unknownNodeCount() == 0) return;
-    if (dim == 2) planar_ = std::make_unique<PlanarReducedKernels>(problem);
+    if (dim == 2) {
+        planar_ = std::make_unique<PlanarReducedKernels>(problem);
+    } else {
+        // The general kernels' per-edge data (the planar ones keep their own).
+        edgeRotated_.assign(graph.neighbours.size(), Vector3{});
+        transposeEdge_.assign(graph.neighbours.size(), -1);
+        for (int i = 0; i < n; ++i)
+            for (int e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e) {
+                const int j = graph.neighbours[e];
+                for (int f = graph.offsets[j]; f < graph.offsets[j + 1]; ++f)
+                    if (graph.neighbours[f] == i) transposeEdge_[e] = f;
+                if (transposeEdge_[e] < 0) throw std::invalid_argument("ReducedNewtonSolver: the graph is not symmetric");
+            }
+    }
 
     // K: the displacement block of the Hessian, factorised once (file comment).
     const BlockPattern& pattern = problem.blockPattern();
@@ -124,18 +128,32 @@ ReducedNewtonSolver::ReducedNewtonSolver(const RbmProblem& problem, ReducedNewto
     const int blockSize = vectorSystem_ ? dim : 1;
     PetscMPIInt ranks = 1;
     RBM_CHECK_PETSC(MPI_Comm_size(solverCommunicator(), &ranks));
-    // Whether the user chose the factorisation's package (-rbm_reduced_… or the global option).
-    PetscBool packageChosen = PETSC_FALSE, globalPackageChosen = PETSC_FALSE;
-    RBM_CHECK_PETSC(PetscOptionsHasName(nullptr, "rbm_reduced_", "-pc_factor_mat_solver_type", &packageChosen));
-    RBM_CHECK_PETSC(PetscOptionsHasName(nullptr, nullptr, "-pc_factor_mat_solver_type", &globalPackageChosen));
-    packageChosen = packageChosen || globalPackageChosen ? PETSC_TRUE : PETSC_FALSE;
+    // rbm's own factorisation and back-substitution (SparseCholesky.hpp: 3–5× faster than
+    // MatMatSolve for 2–3 components) wherever K would be factorised on one rank, unless the
+    // user chose K's solver or package through PETSc's options (-rbm_reduced_…, -rbm_… or
+    // global): then PETSc's KSP, as configured.
+    bool userChoseSolver = false;
+    for (const char* prefix : {"rbm_reduced_", "rbm_", static_cast<const char*>(nullptr)})
+        for (const char* name : {"-ksp_type", "-pc_type", "-pc_factor_mat_solver_type"}) {
+            PetscBool given = PETSC_FALSE;
+            RBM_CHECK_PETSC(PetscOptionsHasName(nullptr, prefix, name, &given));
+            // (Another living solver's copies and defaults under -rbm_reduced_ are not a choice.)
+            const std::string fullName = "-" + std::string(prefix ? prefix : "") + std::string(name + 1);
+            userChoseSolver = userChoseSolver || (given == PETSC_TRUE && !InheritedOptions::isHeldCopy(fullName));
+        }
+    const bool factorised = options.linearSolver == LinearSolverKind::direct ||
+                            (options.linearSolver == LinearSolverKind::automatic &&
+                             (dim == 2 || problem.unknownNodeCount() <= directSolverRowLimit));
+    if (!vectorSystem_ && ranks == 1 && factorised && !userChoseSolver && SparseCholesky::available()) {
+        cholesky_ = std::make_unique<SparseCholesky>(problem.unknownNodeCount(), pattern.rowOffsets, pattern.columns,
+                                                     laplacian_);
+        return;
+    }
 #if defined(PETSC_HAVE_SUITESPARSE)
     // One rank, scalar K: CHOLMOD's supernodal Cholesky. On the 40k-node airfoil its
     // back-substitution costs 6.5 MFlop against MUMPS's 350 (PETSc's flop count, -log_view), and
     // the back-substitutions are most of this solver's work.
-    // (Not needed where rbm factorises K itself, below; the option would also outlive this
-    // solver and read as the user's choice to the next one.)
-    if (!vectorSystem_ && ranks == 1 && !SparseCholesky::available()) {
+    if (!vectorSystem_ && ranks == 1) {
         laplacianOptions_ = std::make_unique<InheritedOptions>("reduced");
         laplacianOptions_->addDefault("pc_factor_mat_solver_type", "cholmod");
     }
@@ -155,11 +173,6 @@ ReducedNewtonSolver::ReducedNewtonSolver(const RbmProblem& problem, ReducedNewto
     }
     // One rank and a factorisation (not the user's choice of an iterative method): all components at once.
     multipleRightHandSides_ = !vectorSystem_ && system_->isDirect() && ranks == 1;
-    // ... and, unless the user chose the factorisation's package, rbm's own back-substitution on
-    // CHOLMOD's factor (SparseCholesky.hpp: 3–5× faster than MatMatSolve for 2–3 components).
-    if (multipleRightHandSides_ && SparseCholesky::available() && !packageChosen)
-        cholesky_ = std::make_unique<SparseCholesky>(problem.unknownNodeCount(), pattern.rowOffsets, pattern.columns,
-                                                     laplacian_);
     componentIn_.resize(problem.unknownNodeCount());
     componentOut_.resize(problem.unknownNodeCount());
 }
