@@ -461,6 +461,18 @@ BlockSystemSolver::Report BlockSystemSolver::solve(std::span<const double> right
     return report;
 }
 
+void BlockSystemSolver::applyPreconditioner(std::span<const double> rightHandSide, std::span<double> solution)
+{
+    if (static_cast<int>(rightHandSide.size()) != size_ || static_cast<int>(solution.size()) != size_)
+        throw std::invalid_argument("BlockSystemSolver::applyPreconditioner: vector sizes do not match the matrix");
+    RBM_CHECK_PETSC(KSPSetUp(ksp_));
+    PC pc = nullptr;
+    RBM_CHECK_PETSC(KSPGetPC(ksp_, &pc));
+    layout_->scatter(rightHandSide, rightHandSide_, blockSize_);
+    RBM_CHECK_PETSC(PCApply(pc, rightHandSide_, solution_));
+    layout_->gather(solution_, solution, blockSize_);
+}
+
 void BlockSystemSolver::multiply(std::span<const double> x, std::span<double> y) const
 {
     layout_->scatter(x, solution_, blockSize_);

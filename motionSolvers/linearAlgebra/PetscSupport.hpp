@@ -224,6 +224,10 @@ public:
     void setNearNullSpace(const std::vector<std::vector<double>>& modes);
     // Solves A x = b. With useGuess, x's input is the initial guess of an iterative method.
     Report solve(std::span<const double> rightHandSide, std::span<double> solution, bool useGuess = false);
+    // solution = M⁻¹ rightHandSide: ONE application of the configured preconditioner (PCApply;
+    // for GAMG or BoomerAMG one V-cycle), set up at the first call. Not a solve: a linear map
+    // close to A⁻¹, for an outer flexible Krylov method.
+    void applyPreconditioner(std::span<const double> rightHandSide, std::span<double> solution);
     // y = A x.
     void multiply(std::span<const double> x, std::span<double> y) const;
 

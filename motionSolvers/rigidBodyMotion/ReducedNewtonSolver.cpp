@@ -3,6 +3,7 @@
 #include "BlockRowLayout.hpp"
 #include "LocalGlobalSolver.hpp"
 #include "PlanarReducedKernels.hpp"
+#include "ReducedHessian3D.hpp"
 #include "ReducedLinearizedOperator.hpp"
 #include "SparseCholesky.hpp"
 #include "ThreadCount.hpp"
@@ -108,6 +109,9 @@ ReducedNewtonSolver::ReducedNewtonSolver(const RbmProblem& problem, ReducedNewto
     if (problem.unknownNodeCount() == 0) return;
     if (dim == 2) {
         planar_ = std::make_unique<PlanarReducedKernels>(problem);
+    } else if (dim == 3) {
+        // 3D: S from per-node data (ReducedHessian3D.hpp), no per-edge data.
+        hessian3D_ = std::make_unique<ReducedHessian3D>(problem);
     } else {
         // The general kernels' per-edge data (the planar ones keep their own).
         edgeRotated_.assign(graph.neighbours.size(), Vector3{});
@@ -173,6 +177,11 @@ ReducedNewtonSolver::ReducedNewtonSolver(const RbmProblem& problem, ReducedNewto
     }
     // One rank and a factorisation (not the user's choice of an iterative method): all components at once.
     multipleRightHandSides_ = !vectorSystem_ && system_->isDirect() && ranks == 1;
+    if (!system_->isDirect()) {
+        PetscBool inner = PETSC_FALSE;
+        RBM_CHECK_PETSC(PetscOptionsHasName(nullptr, "rbm_reduced_", "-inner_solve", &inner));
+        laplacianByCycle_ = !inner;
+    }
     componentIn_.resize(problem.unknownNodeCount());
     componentOut_.resize(problem.unknownNodeCount());
 }
@@ -246,6 +255,7 @@ void ReducedNewtonSolver::prepareHessian(std::span<const Vector3> displacement, 
         planar_->prepareHessian(displacement, rotations);
         return;
     }
+    if (hessian3D_) return hessian3D_->prepare(displacement, rotations);
     const CellNeighbourGraph& graph = problem_.graph();
     const std::vector<Vector3>& x = problem_.referencePoints();
     const std::vector<int>& nodes = problem_.unknownNodes();
@@ -278,6 +288,7 @@ void ReducedNewtonSolver::prepareHessian(std::span<const Vector3> displacement, 
 
 void ReducedNewtonSolver::applyHessian(std::span<const double> v, std::span<double> y)
 {
+    if (hessian3D_) return hessian3D_->apply(v, y);
     const CellNeighbourGraph& graph = problem_.graph();
     const std::vector<int>& nodes = problem_.unknownNodes();
     const int m = problem_.unknownNodeCount();
@@ -359,8 +370,12 @@ bool ReducedNewtonSolver::precondition(std::span<const double> r, std::span<doub
         // The same K for every component.
         for (int q = 0; q < dim; ++q) {
             for (int a = 0; a < m; ++a) componentIn_[a] = r[static_cast<std::size_t>(a) * dim + q];
-            const BlockSystemSolver::Report report = system_->solve(componentIn_, componentOut_, false);
-            if (!report.converged) return false;
+            if (laplacianByCycle_) {
+                system_->applyPreconditioner(componentIn_, componentOut_);
+            } else {
+                const BlockSystemSolver::Report report = system_->solve(componentIn_, componentOut_, false);
+                if (!report.converged) return false;
+            }
             for (int a = 0; a < m; ++a) z[static_cast<std::size_t>(a) * dim + q] = componentOut_[a];
         }
         return true;

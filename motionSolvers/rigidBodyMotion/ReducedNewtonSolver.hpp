@@ -64,6 +64,8 @@
 
 namespace rbm::motion {
 
+class ReducedHessian3D;
+
 struct ReducedNewtonOptions {
     LinearSolverKind linearSolver = LinearSolverKind::automatic;  // of the Laplacian K
     int maximumIterations = 50;                                   // Newton steps
@@ -121,11 +123,13 @@ private:
     bool multipleRightHandSides_ = false;  // K factorised on one rank: MatMatSolve on all components
     std::unique_ptr<PlanarReducedKernels> planar_;  // the 2D kernels (PlanarReducedKernels.hpp)
     std::unique_ptr<SparseCholesky> cholesky_;  // K's factor, when one rank factorises the scalar K
+    bool laplacianByCycle_ = false;        // K iterative: K⁻¹ applied as one multigrid cycle (PCApply)
     Mat factor_ = nullptr;                 // the factor inside system_'s PC (not owned)
     PetscMat components_, solutions_;      // dense m × dimension right-hand sides and solutions
     std::vector<std::array<double, 9>> rotationMaps_;  // per unknown node: H_δδ⁻¹ (or its axis restriction)
     std::vector<Vector3> edgeRotated_;                 // per graph edge i→j of an unknown centre: R_i d_ij
     std::vector<int> transposeEdge_;                   // per graph edge i→j: the edge j→i
+    std::unique_ptr<ReducedHessian3D> hessian3D_;      // 3D: S from per-node data (edgeRotated_ unused)
     std::unique_ptr<InheritedOptions> laplacianOptions_;  // rbm's defaults for the Laplacian's factorisation
     // The last two results (node displacements), for the secant predictor of warm starts.
     std::vector<Vector3> lastSolution_, previousSolution_;
