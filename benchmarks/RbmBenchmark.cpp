@@ -747,6 +747,7 @@ Record runVariantTask(const std::string& caseName, const std::string& variant, c
     record.set("unknownNodes", problem->unknownNodeCount());
     record.set("unknowns", problem->unknownCount());
     record.set("graphEdges", problem->graph().edgeCount());
+    record.set("peakAfterProblemMiB", procStatusMiB("VmHWM"));
     const double estimate = estimatedMatrixBytes(variant, *problem);
     record.set("estimatedMatrixGiB", estimate / 1073741824.0);
     if (estimate > memoryLimitBytes) {
@@ -762,6 +763,7 @@ Record runVariantTask(const std::string& caseName, const std::string& variant, c
     PhaseTimer assembleTimer(record, "assemble");
     std::unique_ptr<motion::RbmSolver> solver = makeSolver(variant, *problem);
     assembleTimer.stop();
+    record.set("peakAfterAssemblyMiB", procStatusMiB("VmHWM"));
 
     PhaseTimer firstTimer(record, "firstSolve");
     const motion::RbmResult result = solver->solve(caseProblem.prescribed);

@@ -4,6 +4,7 @@
 #include "LocalGlobalSolver.hpp"
 #include "PlanarReducedKernels.hpp"
 #include "ReducedHessian3D.hpp"
+#include "ThreeVectorMultigrid.hpp"
 #include "ReducedLinearizedOperator.hpp"
 #include "SparseCholesky.hpp"
 #include "ThreadCount.hpp"
@@ -366,6 +367,11 @@ bool ReducedNewtonSolver::precondition(std::span<const double> r, std::span<doub
         RBM_CHECK_PETSC(MatDenseRestoreArrayRead(solutions_, &out));
         return true;
     }
+    if (!vectorSystem_ && laplacianByCycle_ && dim == 3 && prepareThreeVectorCycle()) {
+        // One V-cycle on the three components at once (ThreeVectorMultigrid.hpp).
+        threeVectorCycle_->apply(r, z);
+        return true;
+    }
     if (!vectorSystem_) {
         // The same K for every component.
         for (int q = 0; q < dim; ++q) {
@@ -385,6 +391,28 @@ bool ReducedNewtonSolver::precondition(std::span<const double> r, std::span<doub
     const BlockSystemSolver::Report report = system_->solve(projected, z, false);
     problem_.projectSliding(z, dim);
     return report.converged;
+}
+
+bool ReducedNewtonSolver::prepareThreeVectorCycle()
+{
+    if (threeVectorCycle_) return true;
+    if (threeVectorCycleFailed_) return false;
+    PetscMPIInt ranks = 1;
+    RBM_CHECK_PETSC(MPI_Comm_size(solverCommunicator(), &ranks));
+    try {
+        if (ranks != 1) throw std::runtime_error("more than one rank");
+        PC pc = nullptr;
+        RBM_CHECK_PETSC(KSPSetUp(system_->ksp()));
+        RBM_CHECK_PETSC(KSPGetPC(system_->ksp(), &pc));
+        const BlockPattern& pattern = problem_.blockPattern();
+        threeVectorCycle_ = std::make_unique<ThreeVectorMultigrid>(pc, pattern.rowOffsets, pattern.columns, laplacian_);
+        // The hierarchy is copied: PETSc's matrix and multigrid are no longer needed.
+        system_.reset();
+    } catch (const std::runtime_error&) {
+        // Another preconditioner chosen by options, or several ranks: one PCApply per component.
+        threeVectorCycleFailed_ = true;
+    }
+    return static_cast<bool>(threeVectorCycle_);
 }
 
 double ReducedNewtonSolver::largestRelativeDisplacement(std::span<const double> v) const

@@ -1,0 +1,334 @@
+#include "ThreeVectorMultigrid.hpp"
+
+#include "PetscSupport.hpp"
+#include "ThreadCount.hpp"
+
+#include <petscksp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace rbm::motion {
+
+namespace {
+
+constexpr int coarsestRowLimit = 4000;
+constexpr int chebyshevDegree = 2;
+constexpr int powerIterations = 10;
+
+bool isType(PetscObject object, const char* type)
+{
+    PetscBool match = PETSC_FALSE;
+    RBM_CHECK_PETSC(PetscObjectTypeCompare(object, type, &match));
+    return match == PETSC_TRUE;
+}
+
+// Any sequential PETSc matrix as CSR (row by row: every type has MatGetRow).
+void copyMatrix(Mat matrix, std::vector<int>& offsets, std::vector<int>& columns, std::vector<double>& values)
+{
+    PetscInt rows = 0, cols = 0;
+    RBM_CHECK_PETSC(MatGetSize(matrix, &rows, &cols));
+    offsets.assign(1, 0);
+    offsets.reserve(static_cast<std::size_t>(rows) + 1);
+    columns.clear();
+    values.clear();
+    for (PetscInt row = 0; row < rows; ++row) {
+        PetscInt count = 0;
+        const PetscInt* rowColumns = nullptr;
+        const PetscScalar* rowValues = nullptr;
+        RBM_CHECK_PETSC(MatGetRow(matrix, row, &count, &rowColumns, &rowValues));
+        for (PetscInt k = 0; k < count; ++k) {
+            columns.push_back(static_cast<int>(rowColumns[k]));
+            values.push_back(rowValues[k]);
+        }
+        RBM_CHECK_PETSC(MatRestoreRow(matrix, row, &count, &rowColumns, &rowValues));
+        offsets.push_back(static_cast<int>(columns.size()));
+    }
+}
+
+} // namespace
+
+ThreeVectorMultigrid::ThreeVectorMultigrid(PC pc, std::span<const int> rowOffsets, std::span<const int> columns,
+                                           std::span<const double> values)
+{
+    const PetscObject object = reinterpret_cast<PetscObject>(pc);
+    if (!isType(object, PCGAMG) && !isType(object, PCMG))
+        throw std::runtime_error("ThreeVectorMultigrid: the preconditioner is not multigrid");
+    PetscMPIInt ranks = 1;
+    RBM_CHECK_PETSC(MPI_Comm_size(PetscObjectComm(object), &ranks));
+    if (ranks != 1) throw std::runtime_error("ThreeVectorMultigrid: one rank only");
+    PetscInt petscLevels = 0;
+    RBM_CHECK_PETSC(PCMGGetLevels(pc, &petscLevels));
+    if (petscLevels < 1) throw std::runtime_error("ThreeVectorMultigrid: no levels");
+    levels_.resize(static_cast<std::size_t>(petscLevels));
+    for (int index = 0; index < petscLevels; ++index) {
+        Level& level = levels_[index];
+        const PetscInt petscLevel = petscLevels - 1 - index;  // PETSc: 0 = coarsest
+        if (index == 0) {
+            level.rows = static_cast<int>(rowOffsets.size()) - 1;
+            level.offsets = rowOffsets.data();
+            level.columns = columns.data();
+            level.values = values.data();
+        } else {
+            KSP smoother = nullptr;
+            Mat operatorMatrix = nullptr;
+            RBM_CHECK_PETSC(PCMGGetSmoother(pc, petscLevel, &smoother));
+            RBM_CHECK_PETSC(KSPGetOperators(smoother, &operatorMatrix, nullptr));
+            copyMatrix(operatorMatrix, level.owned.offsets, level.owned.columns, level.owned.values);
+            level.rows = static_cast<int>(level.owned.offsets.size()) - 1;
+            level.offsets = level.owned.offsets.data();
+            level.columns = level.owned.columns.data();
+            level.values = level.owned.values.data();
+        }
+        if (petscLevel > 0) {
+            Mat interpolation = nullptr;
+            RBM_CHECK_PETSC(PCMGGetInterpolation(pc, petscLevel, &interpolation));
+            PetscInt rows = 0, coarseRows = 0;
+            RBM_CHECK_PETSC(MatGetSize(interpolation, &rows, &coarseRows));
+            if (rows != level.rows) throw std::runtime_error("ThreeVectorMultigrid: interpolation does not match");
+            Csr& p = level.interpolation;
+            copyMatrix(interpolation, p.offsets, p.columns, p.values);
+            // Its transpose, rows in order (restriction gathers).
+            Csr& r = level.restriction;
+            r.offsets.assign(static_cast<std::size_t>(coarseRows) + 1, 0);
+            for (int column : p.columns) ++r.offsets[column + 1];
+            for (PetscInt row = 0; row < coarseRows; ++row) r.offsets[row + 1] += r.offsets[row];
+            r.columns.resize(p.columns.size());
+            r.values.resize(p.values.size());
+            std::vector<int> next(r.offsets.begin(), r.offsets.end() - 1);
+            for (int row = 0; row < rows; ++row)
+                for (int k = p.offsets[row]; k < p.offsets[row + 1]; ++k) {
+                    const int position = next[p.columns[k]]++;
+                    r.columns[position] = row;
+                    r.values[position] = p.values[k];
+                }
+        }
+        const std::size_t size = static_cast<std::size_t>(level.rows) * 3;
+        level.rhs.assign(size, 0.0);
+        level.solution.assign(size, 0.0);
+        level.inverseDiagonal.assign(static_cast<std::size_t>(level.rows), 0.0);
+        for (int row = 0; row < level.rows; ++row)
+            for (int k = level.offsets[row]; k < level.offsets[row + 1]; ++k)
+                if (level.columns[k] == row) level.inverseDiagonal[row] = level.values[k] > 0.0 ? 1.0 / level.values[k] : 0.0;
+    }
+    for (int index = 1; index < petscLevels; ++index)
+        if (static_cast<int>(levels_[index - 1].restriction.offsets.size()) - 1 != levels_[index].rows)
+            throw std::runtime_error("ThreeVectorMultigrid: level sizes do not match");
+
+    // Coarsest level: dense Cholesky.
+    Level& coarsest = levels_.back();
+    const int nc = coarsest.rows;
+    if (nc > coarsestRowLimit) throw std::runtime_error("ThreeVectorMultigrid: the coarsest level is too large");
+    coarseFactor_.assign(static_cast<std::size_t>(nc) * nc, 0.0);
+    for (int row = 0; row < nc; ++row)
+        for (int k = coarsest.offsets[row]; k < coarsest.offsets[row + 1]; ++k)
+            coarseFactor_[static_cast<std::size_t>(row) * nc + coarsest.columns[k]] = coarsest.values[k];
+    for (int j = 0; j < nc; ++j) {
+        double* rowJ = coarseFactor_.data() + static_cast<std::size_t>(j) * nc;
+        double diagonal = rowJ[j];
+        for (int k = 0; k < j; ++k) diagonal -= rowJ[k] * rowJ[k];
+        if (!(diagonal > 0.0)) throw std::runtime_error("ThreeVectorMultigrid: the coarsest operator is not positive definite");
+        rowJ[j] = std::sqrt(diagonal);
+        for (int i = j + 1; i < nc; ++i) {
+            double* rowI = coarseFactor_.data() + static_cast<std::size_t>(i) * nc;
+            double sum = rowI[j];
+            for (int k = 0; k < j; ++k) sum -= rowI[k] * rowJ[k];
+            rowI[j] = sum / rowJ[j];
+        }
+    }
+    const std::size_t finest = static_cast<std::size_t>(levels_.front().rows) * 3;
+    residual_.assign(finest, 0.0);
+    direction_.assign(finest, 0.0);
+    product_.assign(finest, 0.0);
+    for (std::size_t index = 0; index + 1 < levels_.size(); ++index) estimateLambda(levels_[index]);
+}
+
+double ThreeVectorMultigrid::bytes() const
+{
+    double total = 8.0 * static_cast<double>(coarseFactor_.size() + residual_.size() + direction_.size() + product_.size());
+    for (const Level& level : levels_) {
+        for (const Csr* csr : {&level.owned, &level.interpolation, &level.restriction})
+            total += 4.0 * static_cast<double>(csr->offsets.size() + csr->columns.size()) + 8.0 * static_cast<double>(csr->values.size());
+        total += 8.0 * static_cast<double>(level.inverseDiagonal.size() + level.rhs.size() + level.solution.size());
+    }
+    return total;
+}
+
+void ThreeVectorMultigrid::multiply(const Level& level, const double* x, double* y) const
+{
+    const int rows = level.rows;
+    const int* offsets = level.offsets;
+    const int* columns = level.columns;
+    const double* values = level.values;
+#pragma omp parallel for schedule(static) if (worthThreading(static_cast<std::size_t>(offsets[rows])))
+    for (int row = 0; row < rows; ++row) {
+        double s0 = 0.0, s1 = 0.0, s2 = 0.0;
+        for (int k = offsets[row]; k < offsets[row + 1]; ++k) {
+            const double a = values[k];
+            const double* xc = x + 3 * static_cast<std::size_t>(columns[k]);
+            s0 += a * xc[0];
+            s1 += a * xc[1];
+            s2 += a * xc[2];
+        }
+        double* yr = y + 3 * static_cast<std::size_t>(row);
+        yr[0] = s0, yr[1] = s1, yr[2] = s2;
+    }
+}
+
+// λ_max(D⁻¹A) by power iteration on three start vectors (deterministic), the largest ratio.
+void ThreeVectorMultigrid::estimateLambda(Level& level)
+{
+    const std::size_t size = static_cast<std::size_t>(level.rows) * 3;
+    std::vector<double>& v = level.solution;
+    std::vector<double>& w = residual_;
+    for (std::size_t k = 0; k < size; ++k) {
+        // A fixed, irregular start (golden-ratio sequence): no eigenvector is missed by symmetry.
+        const double phase = static_cast<double>(k) * 0.6180339887498949;
+        v[k] = 0.5 + (phase - std::floor(phase));
+    }
+    double estimate = 0.0;
+    for (int iteration = 0; iteration < powerIterations; ++iteration) {
+        multiply(level, v.data(), w.data());
+        double norms[3] = {}, products[3] = {};
+        for (int row = 0; row < level.rows; ++row)
+            for (int c = 0; c < 3; ++c) {
+                const std::size_t k = 3 * static_cast<std::size_t>(row) + c;
+                w[k] *= level.inverseDiagonal[row];
+                norms[c] += w[k] * w[k];
+                products[c] += v[k] * v[k];
+            }
+        estimate = 0.0;
+        for (int c = 0; c < 3; ++c) estimate = std::max(estimate, std::sqrt(norms[c] / std::max(products[c], 1e-300)));
+        for (int c = 0; c < 3; ++c) {
+            const double scale = norms[c] > 0.0 ? 1.0 / std::sqrt(norms[c]) : 0.0;
+            for (int row = 0; row < level.rows; ++row) v[3 * static_cast<std::size_t>(row) + c] = w[3 * static_cast<std::size_t>(row) + c] * scale;
+        }
+    }
+    level.lambdaMax = estimate > 0.0 ? estimate : 1.0;
+    std::fill(v.begin(), v.end(), 0.0);
+}
+
+// Chebyshev on D⁻¹A over [0.1 λ, 1.1 λ] from level.solution (zero if zeroGuess) for level.rhs.
+void ThreeVectorMultigrid::smooth(Level& level, bool zeroGuess)
+{
+    const double upper = 1.1 * level.lambdaMax, lower = 0.1 * level.lambdaMax;
+    const double theta = 0.5 * (upper + lower), delta = 0.5 * (upper - lower);
+    const double sigma = theta / delta;
+    double rho = 1.0 / sigma;
+    const int rows = level.rows;
+    double* x = level.solution.data();
+    double* r = residual_.data();
+    double* d = direction_.data();
+    double* product = product_.data();
+    const double* b = level.rhs.data();
+    const double* dinv = level.inverseDiagonal.data();
+    const bool threads = worthThreading(static_cast<std::size_t>(level.offsets[rows]));
+    // r = D⁻¹ (b − A x), d = r / θ, x += d
+    if (!zeroGuess) multiply(level, x, r);
+#pragma omp parallel for schedule(static) if (threads)
+    for (int row = 0; row < rows; ++row)
+        for (int c = 0; c < 3; ++c) {
+            const std::size_t k = 3 * static_cast<std::size_t>(row) + c;
+            const double value = dinv[row] * (b[k] - (zeroGuess ? 0.0 : r[k]));
+            r[k] = value;
+            d[k] = value / theta;
+            x[k] = (zeroGuess ? 0.0 : x[k]) + d[k];
+        }
+    for (int step = 1; step < chebyshevDegree; ++step) {
+        // r −= D⁻¹ A d; d = ρ' ρ d + (2 ρ'/δ) r; x += d
+        multiply(level, d, product);
+        const double rhoNext = 1.0 / (2.0 * sigma - rho);
+        const double keep = rhoNext * rho, push = 2.0 * rhoNext / delta;
+#pragma omp parallel for schedule(static) if (threads)
+        for (int row = 0; row < rows; ++row)
+            for (int c = 0; c < 3; ++c) {
+                const std::size_t k = 3 * static_cast<std::size_t>(row) + c;
+                r[k] -= dinv[row] * product[k];
+                d[k] = keep * d[k] + push * r[k];
+                x[k] += d[k];
+            }
+        rho = rhoNext;
+    }
+}
+
+void ThreeVectorMultigrid::coarseSolve(Level& level)
+{
+    const int nc = level.rows;
+    for (int c = 0; c < 3; ++c) {
+        // L y = b, Lᵀ x = y
+        std::vector<double>& x = level.solution;
+        for (int i = 0; i < nc; ++i) {
+            const double* rowI = coarseFactor_.data() + static_cast<std::size_t>(i) * nc;
+            double sum = level.rhs[3 * static_cast<std::size_t>(i) + c];
+            for (int k = 0; k < i; ++k) sum -= rowI[k] * x[3 * static_cast<std::size_t>(k) + c];
+            x[3 * static_cast<std::size_t>(i) + c] = sum / rowI[i];
+        }
+        for (int i = nc - 1; i >= 0; --i) {
+            double sum = x[3 * static_cast<std::size_t>(i) + c];
+            for (int k = i + 1; k < nc; ++k) sum -= coarseFactor_[static_cast<std::size_t>(k) * nc + i] * x[3 * static_cast<std::size_t>(k) + c];
+            x[3 * static_cast<std::size_t>(i) + c] = sum / coarseFactor_[static_cast<std::size_t>(i) * nc + i];
+        }
+    }
+}
+
+void ThreeVectorMultigrid::cycle(int index)
+{
+    Level& level = levels_[index];
+    if (index + 1 == static_cast<int>(levels_.size())) {
+        coarseSolve(level);
+        return;
+    }
+    Level& coarse = levels_[index + 1];
+    smooth(level, true);
+    // residual b − A x into level.residual, restricted into coarse.rhs
+    double* residual = residual_.data();
+    multiply(level, level.solution.data(), residual);
+    const int rows = level.rows;
+    const bool threads = worthThreading(static_cast<std::size_t>(level.offsets[rows]));
+#pragma omp parallel for schedule(static) if (threads)
+    for (int row = 0; row < rows; ++row)
+        for (int c = 0; c < 3; ++c) {
+            const std::size_t k = 3 * static_cast<std::size_t>(row) + c;
+            residual[k] = level.rhs[k] - residual[k];
+        }
+    const Csr& restriction = level.restriction;
+#pragma omp parallel for schedule(static) if (threads)
+    for (int row = 0; row < coarse.rows; ++row) {
+        double s0 = 0.0, s1 = 0.0, s2 = 0.0;
+        for (int k = restriction.offsets[row]; k < restriction.offsets[row + 1]; ++k) {
+            const double a = restriction.values[k];
+            const double* rc = residual + 3 * static_cast<std::size_t>(restriction.columns[k]);
+            s0 += a * rc[0], s1 += a * rc[1], s2 += a * rc[2];
+        }
+        double* out = coarse.rhs.data() + 3 * static_cast<std::size_t>(row);
+        out[0] = s0, out[1] = s1, out[2] = s2;
+    }
+    cycle(index + 1);
+    // x += P e
+    const Csr& interpolation = level.interpolation;
+#pragma omp parallel for schedule(static) if (threads)
+    for (int row = 0; row < rows; ++row) {
+        double s0 = 0.0, s1 = 0.0, s2 = 0.0;
+        for (int k = interpolation.offsets[row]; k < interpolation.offsets[row + 1]; ++k) {
+            const double a = interpolation.values[k];
+            const double* ec = coarse.solution.data() + 3 * static_cast<std::size_t>(interpolation.columns[k]);
+            s0 += a * ec[0], s1 += a * ec[1], s2 += a * ec[2];
+        }
+        double* x = level.solution.data() + 3 * static_cast<std::size_t>(row);
+        x[0] += s0, x[1] += s1, x[2] += s2;
+    }
+    smooth(level, false);
+}
+
+void ThreeVectorMultigrid::apply(std::span<const double> r, std::span<double> z)
+{
+    Level& finest = levels_.front();
+    const std::size_t size = static_cast<std::size_t>(finest.rows) * 3;
+    if (r.size() != size || z.size() != size) throw std::invalid_argument("ThreeVectorMultigrid::apply: sizes do not match");
+    std::copy(r.begin(), r.end(), finest.rhs.begin());
+    cycle(0);
+    std::copy(finest.solution.begin(), finest.solution.end(), z.begin());
+}
+
+} // namespace rbm::motion
