@@ -1,5 +1,6 @@
 #include "ThreeVectorMultigrid.hpp"
 
+#include "BlockRowLayout.hpp"
 #include "PetscSupport.hpp"
 #include "ThreadCount.hpp"
 
@@ -48,6 +49,44 @@ void copyMatrix(Mat matrix, std::vector<int>& offsets, std::vector<int>& columns
 }
 
 } // namespace
+
+std::unique_ptr<ThreeVectorMultigrid> ThreeVectorMultigrid::build(std::span<const int> rowOffsets,
+                                                                std::span<const int> columns,
+                                                                std::span<const double> values,
+                                                                std::string_view solverName)
+{
+    PetscMPIInt ranks = 1;
+    RBM_CHECK_PETSC(MPI_Comm_size(solverCommunicator(), &ranks));
+    if (ranks != 1) return nullptr;
+    static_assert(sizeof(PetscInt) == sizeof(int), "PETSc's indices must be 32-bit ints to wrap the CSR arrays");
+    const InheritedOptions options(solverName);
+    PetscKsp ksp;
+    RBM_CHECK_PETSC(KSPCreate(PETSC_COMM_SELF, ksp.out()));
+    RBM_CHECK_PETSC(KSPSetType(ksp, KSPCG));
+    PC pc = nullptr;
+    RBM_CHECK_PETSC(KSPGetPC(ksp, &pc));
+    RBM_CHECK_PETSC(PCSetType(pc, PCGAMG));
+    configureFromOptions(ksp.get(), options);
+    const PetscObject pcObject = reinterpret_cast<PetscObject>(pc);
+    if (!isType(pcObject, PCGAMG) && !isType(pcObject, PCMG)) return nullptr;
+    const PetscInt rows = static_cast<PetscInt>(rowOffsets.size()) - 1;
+    PetscMat matrix;
+    // PETSc only reads the arrays (no MatSetValues on this matrix).
+    RBM_CHECK_PETSC(MatCreateSeqAIJWithArrays(PETSC_COMM_SELF, rows, rows, const_cast<PetscInt*>(rowOffsets.data()),
+                                              const_cast<PetscInt*>(columns.data()),
+                                              const_cast<PetscScalar*>(values.data()), matrix.out()));
+    RBM_CHECK_PETSC(MatSetOption(matrix, MAT_SYMMETRIC, PETSC_TRUE));
+    RBM_CHECK_PETSC(MatSetOption(matrix, MAT_SYMMETRY_ETERNAL, PETSC_TRUE));
+    RBM_CHECK_PETSC(MatSetOption(matrix, MAT_SPD, PETSC_TRUE));
+    RBM_CHECK_PETSC(KSPSetOperators(ksp, matrix, matrix));
+    RBM_CHECK_PETSC(KSPSetUp(ksp));
+    RBM_CHECK_PETSC(PCSetUp(pc));
+    try {
+        return std::make_unique<ThreeVectorMultigrid>(pc, rowOffsets, columns, values);
+    } catch (const std::runtime_error&) {
+        return nullptr;
+    }
+}
 
 ThreeVectorMultigrid::ThreeVectorMultigrid(PC pc, std::span<const int> rowOffsets, std::span<const int> columns,
                                            std::span<const double> values)

@@ -18,13 +18,25 @@
 
 #include <petscpc.h>
 
+#include <memory>
 #include <span>
+#include <string_view>
 #include <vector>
 
 namespace rbm::motion {
 
 class ThreeVectorMultigrid {
 public:
+    // The hierarchy of the CSR matrix set up by PCGAMG on PETSC_COMM_SELF, PETSc's matrix
+    // wrapping the caller's arrays (no copy), with PETSc's GAMG defaults and then the options
+    // under rbm_<solverName>_ (e.g. -rbm_reduced_pc_gamg_threshold). PETSc's objects are released
+    // before returning. nullptr when the options choose a preconditioner that is not multigrid,
+    // or on more than one rank. (Measured on the twisted 10⁶-cell hex cube: without squaring the
+    // graph, -pc_gamg_square_graph 0, the set-up took 7.0 s instead of 4.2 s and the peak was
+    // 210 MiB higher, for 49 instead of 59 CG iterations: the same total time.)
+    static std::unique_ptr<ThreeVectorMultigrid> build(std::span<const int> rowOffsets, std::span<const int> columns,
+                                                       std::span<const double> values, std::string_view solverName);
+
     // pc: a set-up PC of type mg or gamg on PETSC_COMM_SELF whose finest operator equals the CSR
     // matrix (rowOffsets, columns, values), rows in the same order. Throws std::runtime_error if
     // the hierarchy cannot be used (another PC type, more than one rank, a coarsest level of more

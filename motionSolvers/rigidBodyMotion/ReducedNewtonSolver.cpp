@@ -163,6 +163,22 @@ ReducedNewtonSolver::ReducedNewtonSolver(const RbmProblem& problem, ReducedNewto
         laplacianOptions_->addDefault("pc_factor_mat_solver_type", "cholmod");
     }
 #endif
+    // 3D on one rank with K solved iteratively: ONE multigrid hierarchy of K, set up here on
+    // laplacian_ itself (PETSc keeps no copy of K) and applied as one V-cycle to the three
+    // components at once (ThreeVectorMultigrid.hpp, precondition). Another preconditioner chosen
+    // by options: the BlockSystemSolver below.
+    const bool laplacianIterative =
+        options.linearSolver == LinearSolverKind::iterative || options.linearSolver == LinearSolverKind::matrixFree ||
+        (options.linearSolver == LinearSolverKind::automatic && problem.unknownNodeCount() > directSolverRowLimit);
+    if (!vectorSystem_ && dim == 3 && laplacianIterative) {
+        PetscBool inner = PETSC_FALSE;
+        RBM_CHECK_PETSC(PetscOptionsHasName(nullptr, "rbm_reduced_", "-inner_solve", &inner));
+        if (!inner) threeVectorCycle_ = ThreeVectorMultigrid::build(pattern.rowOffsets, pattern.columns, laplacian_, "reduced");
+        if (threeVectorCycle_) {
+            laplacianByCycle_ = true;
+            return;
+        }
+    }
     system_ = std::make_unique<BlockSystemSolver>(pattern.rowOffsets, pattern.columns, blockSize,
                                                   MatrixSymmetry::symmetricPositiveDefinite, options.linearSolver, dim,
                                                   options.laplacianRelativeTolerance, "reduced");
@@ -367,7 +383,7 @@ bool ReducedNewtonSolver::precondition(std::span<const double> r, std::span<doub
         RBM_CHECK_PETSC(MatDenseRestoreArrayRead(solutions_, &out));
         return true;
     }
-    if (!vectorSystem_ && laplacianByCycle_ && dim == 3 && prepareThreeVectorCycle()) {
+    if (threeVectorCycle_) {
         // One V-cycle on the three components at once (ThreeVectorMultigrid.hpp).
         threeVectorCycle_->apply(r, z);
         return true;
@@ -391,28 +407,6 @@ bool ReducedNewtonSolver::precondition(std::span<const double> r, std::span<doub
     const BlockSystemSolver::Report report = system_->solve(projected, z, false);
     problem_.projectSliding(z, dim);
     return report.converged;
-}
-
-bool ReducedNewtonSolver::prepareThreeVectorCycle()
-{
-    if (threeVectorCycle_) return true;
-    if (threeVectorCycleFailed_) return false;
-    PetscMPIInt ranks = 1;
-    RBM_CHECK_PETSC(MPI_Comm_size(solverCommunicator(), &ranks));
-    try {
-        if (ranks != 1) throw std::runtime_error("more than one rank");
-        PC pc = nullptr;
-        RBM_CHECK_PETSC(KSPSetUp(system_->ksp()));
-        RBM_CHECK_PETSC(KSPGetPC(system_->ksp(), &pc));
-        const BlockPattern& pattern = problem_.blockPattern();
-        threeVectorCycle_ = std::make_unique<ThreeVectorMultigrid>(pc, pattern.rowOffsets, pattern.columns, laplacian_);
-        // The hierarchy is copied: PETSc's matrix and multigrid are no longer needed.
-        system_.reset();
-    } catch (const std::runtime_error&) {
-        // Another preconditioner chosen by options, or several ranks: one PCApply per component.
-        threeVectorCycleFailed_ = true;
-    }
-    return static_cast<bool>(threeVectorCycle_);
 }
 
 double ReducedNewtonSolver::largestRelativeDisplacement(std::span<const double> v) const

@@ -125,11 +125,9 @@ private:
     std::unique_ptr<PlanarReducedKernels> planar_;  // the 2D kernels (PlanarReducedKernels.hpp)
     std::unique_ptr<SparseCholesky> cholesky_;  // K's factor, when one rank factorises the scalar K
     bool laplacianByCycle_ = false;        // K iterative: K⁻¹ applied as one multigrid cycle (PCApply)
-    // 3D, one rank: that cycle on the three components at once, the hierarchy copied from system_'s
-    // GAMG (system_ is then released); see precondition.
+    // 3D, one rank: that cycle on the three components at once, set up in the constructor
+    // instead of system_ (ThreeVectorMultigrid.hpp).
     std::unique_ptr<ThreeVectorMultigrid> threeVectorCycle_;
-    bool threeVectorCycleFailed_ = false;
-    bool prepareThreeVectorCycle();
     Mat factor_ = nullptr;                 // the factor inside system_'s PC (not owned)
     PetscMat components_, solutions_;      // dense m × dimension right-hand sides and solutions
     std::vector<std::array<double, 9>> rotationMaps_;  // per unknown node: H_δδ⁻¹ (or its axis restriction)
