@@ -15,7 +15,6 @@ namespace rbm::motion {
 namespace {
 
 constexpr int coarsestRowLimit = 4000;
-constexpr int chebyshevDegree = 2;
 constexpr int powerIterations = 10;
 
 bool isType(PetscObject object, const char* type)
@@ -81,8 +80,12 @@ std::unique_ptr<ThreeVectorMultigrid> ThreeVectorMultigrid::build(std::span<cons
     RBM_CHECK_PETSC(KSPSetOperators(ksp, matrix, matrix));
     RBM_CHECK_PETSC(KSPSetUp(ksp));
     RBM_CHECK_PETSC(PCSetUp(pc));
+    PetscInt degree = 2;
+    RBM_CHECK_PETSC(PetscOptionsGetInt(nullptr, options.prefix().c_str(), "-cycle_degree", &degree, nullptr));
     try {
-        return std::make_unique<ThreeVectorMultigrid>(pc, rowOffsets, columns, values);
+        auto cycle = std::make_unique<ThreeVectorMultigrid>(pc, rowOffsets, columns, values);
+        cycle->degree_ = std::max<int>(1, static_cast<int>(degree));
+        return cycle;
     } catch (const std::runtime_error&) {
         return nullptr;
     }
@@ -274,7 +277,7 @@ void ThreeVectorMultigrid::smooth(Level& level, bool zeroGuess)
             d[k] = value / theta;
             x[k] = (zeroGuess ? 0.0 : x[k]) + d[k];
         }
-    for (int step = 1; step < chebyshevDegree; ++step) {
+    for (int step = 1; step < degree_; ++step) {
         // r −= D⁻¹ A d; d = ρ' ρ d + (2 ρ'/δ) r; x += d
         multiply(level, d, product);
         const double rhoNext = 1.0 / (2.0 * sigma - rho);

@@ -77,6 +77,7 @@ private:
     void estimateLambda(Level& level);
 
     std::vector<Level> levels_;   // 0 = finest
+    int degree_ = 2;              // of the Chebyshev smoother (-rbm_<solverName>_cycle_degree)
     std::vector<double> coarseFactor_;  // dense Cholesky factor of the coarsest operator (lower, row-major)
     // Work shared by the levels (one level is smoothed at a time), sized for the finest.
     std::vector<double> residual_, direction_, product_;
