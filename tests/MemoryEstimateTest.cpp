@@ -110,6 +110,22 @@ TEST(MemoryEstimate, ModelFiguresFollowTheirFormulas)
                   measuredMiB[k] * 1048576.0)
             << nodes[k];
     }
+    // reducedNewton in 3D above the row limit: the scalar K by multigrid (38 bytes a block) and
+    // 480 bytes a node (the reduced Hessian's per-node data, the V-cycle's and Newton's vectors).
+    EXPECT_DOUBLE_EQ(estimateSolveMemory(SolveVariant::coupledReducedNewton, threeD).bytes,
+                     270000.0 * 38.0 + 10000.0 * 480.0);
+    EXPECT_EQ(estimateSolveMemory(SolveVariant::coupledReducedNewton, threeD).rows, 10000.0);
+    // ... and against what rbmBenchmark measured for the twisted hex cube (peak minus the peak
+    // before the solver was built; benchmarks/results/2026-11-25c-cpp2core-twist3D): within 10 %.
+    struct Measured {
+        double unknownNodes, blocks, mebibytes;
+    };
+    for (const Measured& run : {Measured{99405.0, 2569693.0, 148.0}, Measured{1009899.0, 26727295.0, 1405.0}}) {
+        const double estimate =
+            estimateSolveMemory(SolveVariant::coupledReducedNewton, SolveSize{3, run.unknownNodes, run.blocks}).bytes;
+        EXPECT_GT(estimate, 0.9 * run.mebibytes * 1048576.0) << run.unknownNodes;
+        EXPECT_LT(estimate, 1.1 * run.mebibytes * 1048576.0) << run.unknownNodes;
+    }
     // Iterative on request, in 2D as well.
     EXPECT_DOUBLE_EQ(estimateSolveMemory(SolveVariant::coupledLinearized, twoD, LinearSolverKind::iterative).bytes,
                      475.0 * 9.0 * 38.0);

@@ -35,6 +35,14 @@ constexpr double iterativeBytesPerValue = 8.0 + 12.0 + 18.0;
 // (~20), plus the Krylov vectors and the per-node rotation maps.
 constexpr double matrixFreeBytesPerBlock = 8.0 + 12.0 + 20.0;
 constexpr double matrixFreeBytesPerNode = 400.0;
+// reducedNewton in 3D with K iterative (ReducedNewtonSolver.hpp): the scalar K (8 bytes a block)
+// and GAMG's set-up on it (its graph and the coarse operators, transient), as for the other
+// iterative scalar Laplacians, plus per unknown node the reduced Hessian's data (296 bytes,
+// ReducedHessian3D.hpp), the V-cycle's vectors (ThreeVectorMultigrid.hpp, about 130) and the
+// Newton iteration's vectors (about 50 more at the peak). Measured on the twisted hex cube
+// (peak − peak before the solver, rbmBenchmark): 148 MiB at 10⁵ cells (estimate 139 MiB),
+// 1 405 MiB at 10⁶ cells (estimate 1 431 MiB).
+constexpr double reducedNewton3DBytesPerNode = 480.0;
 
 double variantFactor(SolveVariant variant)
 {
@@ -147,6 +155,8 @@ MemoryEstimate estimateSolveMemory(SolveVariant variant, const SolveSize& size, 
     } else {
         const double values = scalarLaplacian ? size.blocks : size.blocks * blockSize * blockSize;
         estimate.bytes = factor * values * iterativeBytesPerValue;
+        if (variant == SolveVariant::coupledReducedNewton && size.dimension == 3)
+            estimate.bytes += factor * size.unknownNodes * reducedNewton3DBytesPerNode;
     }
     return estimate;
 }
