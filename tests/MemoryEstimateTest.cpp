@@ -110,11 +110,15 @@ TEST(MemoryEstimate, ModelFiguresFollowTheirFormulas)
                   measuredMiB[k] * 1048576.0)
             << nodes[k];
     }
-    // reducedNewton in 3D above the row limit: the scalar K by multigrid (38 bytes a block) and
-    // 480 bytes a node (the reduced Hessian's per-node data, the V-cycle's and Newton's vectors).
-    EXPECT_DOUBLE_EQ(estimateSolveMemory(SolveVariant::coupledReducedNewton, threeD).bytes,
-                     270000.0 * 38.0 + 10000.0 * 480.0);
-    EXPECT_EQ(estimateSolveMemory(SolveVariant::coupledReducedNewton, threeD).rows, 10000.0);
+    // reducedNewton in 3D above the row limit (30 000 scalar rows): the scalar K by multigrid (38
+    // bytes a block) and 480 bytes a node (the reduced Hessian's per-node data, the V-cycle's and
+    // Newton's vectors); below it (10 000 rows) K is factorised.
+    const SolveSize reducedSize{3, 30000.0, 810000.0};
+    EXPECT_FALSE(estimateSolveMemory(SolveVariant::coupledReducedNewton, reducedSize).direct);
+    EXPECT_DOUBLE_EQ(estimateSolveMemory(SolveVariant::coupledReducedNewton, reducedSize).bytes,
+                     810000.0 * 38.0 + 30000.0 * 480.0);
+    EXPECT_EQ(estimateSolveMemory(SolveVariant::coupledReducedNewton, reducedSize).rows, 30000.0);
+    EXPECT_TRUE(estimateSolveMemory(SolveVariant::coupledReducedNewton, threeD).direct);
     // ... and against what rbmBenchmark measured for the twisted hex cube (peak minus the peak
     // before the solver was built; benchmarks/results/2026-11-25c-cpp2core-twist3D): within 10 %.
     struct Measured {
