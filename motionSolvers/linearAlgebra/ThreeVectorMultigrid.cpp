@@ -183,6 +183,13 @@ ThreeVectorMultigrid::ThreeVectorMultigrid(PC pc, std::span<const int> rowOffset
     residual_.assign(finest, 0.0);
     direction_.assign(finest, 0.0);
     product_.assign(finest, 0.0);
+    // The finest operator read in single precision (8 instead of 12 bytes an entry, the product
+    // being bound by reading it): at 10⁶ hexahedra 2 s less for 94 MiB more. A preconditioner of
+    // a flexible CG needs no more; the operator stays symmetric.
+    if (levels_.size() > 1) {
+        Level& fine = levels_.front();
+        fine.singleValues.assign(fine.values, fine.values + fine.offsets[fine.rows]);
+    }
     for (std::size_t index = 0; index + 1 < levels_.size(); ++index) estimateLambda(levels_[index]);
 }
 
@@ -192,7 +199,8 @@ double ThreeVectorMultigrid::bytes() const
     for (const Level& level : levels_) {
         for (const Csr* csr : {&level.owned, &level.interpolation, &level.restriction})
             total += 4.0 * static_cast<double>(csr->offsets.size() + csr->columns.size()) + 8.0 * static_cast<double>(csr->values.size());
-        total += 8.0 * static_cast<double>(level.inverseDiagonal.size() + level.rhs.size() + level.solution.size());
+        total += 8.0 * static_cast<double>(level.inverseDiagonal.size() + level.rhs.size() + level.solution.size()) +
+                 4.0 * static_cast<double>(level.singleValues.size());
     }
     return total;
 }
@@ -203,11 +211,12 @@ void ThreeVectorMultigrid::multiply(const Level& level, const double* x, double*
     const int* offsets = level.offsets;
     const int* columns = level.columns;
     const double* values = level.values;
+    const float* single = level.singleValues.empty() ? nullptr : level.singleValues.data();
 #pragma omp parallel for schedule(static) if (worthThreading(static_cast<std::size_t>(offsets[rows])))
     for (int row = 0; row < rows; ++row) {
         double s0 = 0.0, s1 = 0.0, s2 = 0.0;
         for (int k = offsets[row]; k < offsets[row + 1]; ++k) {
-            const double a = values[k];
+            const double a = single ? static_cast<double>(single[k]) : values[k];
             const double* xc = x + 3 * static_cast<std::size_t>(columns[k]);
             s0 += a * xc[0];
             s1 += a * xc[1];

@@ -3,7 +3,8 @@
 // right-hand sides at once (the x, y and z components of a displacement field), on one rank.
 //
 // The hierarchy (coarse operators and interpolations) is taken from a set-up PCMG / PCGAMG and
-// copied; the finest operator is the caller's CSR (referenced, not copied). The cycle itself is
+// copied; the finest operator is the caller's CSR (its pattern referenced, its values copied in
+// single precision). The cycle itself is
 // rbm's: per level Chebyshev smoothing of degree 2 on D⁻¹A over [0.1 λ, 1.1 λ] (PETSc's default
 // multigrid smoother; λ estimated by power iteration), pre- and post-smoothing alike, so the
 // cycle is a symmetric positive definite operator; the coarsest level is solved by a dense
@@ -11,7 +12,7 @@
 // V-cycle is bound by reading the matrix (12 bytes per entry for a few flops); here each pass
 // over a level's matrix serves three vectors (interleaved, 24 contiguous bytes per column
 // index), and the pre-smoothing starts from zero (no product), so a cycle on three vectors reads
-// the finest matrix 4 times instead of 3 × 5 times.
+// the finest matrix 4 times instead of 3 × 5 times, at 8 bytes an entry (single precision).
 //
 // Determinism: every loop writes its own row; restriction is a product with the stored
 // transpose of the interpolation (rows gathered, not scattered); sums run in CSR order.
@@ -63,6 +64,7 @@ private:
         const int* columns = nullptr;
         const double* values = nullptr;
         Csr owned;                     // the operator's storage on coarse levels
+        std::vector<float> singleValues;  // the finest operator's values in single precision (read in products)
         std::vector<double> inverseDiagonal;
         double lambdaMax = 1.0;        // of D⁻¹A
         Csr interpolation;             // from the next coarser level to this one (rows × coarser rows)

@@ -37,7 +37,8 @@ constexpr double matrixFreeBytesPerBlock = 8.0 + 12.0 + 20.0;
 constexpr double matrixFreeBytesPerNode = 400.0;
 // reducedNewton in 3D with K iterative (ReducedNewtonSolver.hpp): the scalar K (8 bytes a block)
 // and GAMG's set-up on it (its graph and the coarse operators, transient), as for the other
-// iterative scalar Laplacians, plus per unknown node the reduced Hessian's data (296 bytes,
+// iterative scalar Laplacians, the V-cycle's single-precision copy of K (4 bytes a block), plus
+// per unknown node the reduced Hessian's data (296 bytes,
 // ReducedHessian3D.hpp), the V-cycle's vectors (ThreeVectorMultigrid.hpp, about 130) and the
 // Newton iteration's vectors (about 50 more at the peak). Measured on the twisted hex cube
 // (peak − peak before the solver, rbmBenchmark): 148 MiB at 10⁵ cells (estimate 139 MiB),
@@ -156,7 +157,7 @@ MemoryEstimate estimateSolveMemory(SolveVariant variant, const SolveSize& size, 
         const double values = scalarLaplacian ? size.blocks : size.blocks * blockSize * blockSize;
         estimate.bytes = factor * values * iterativeBytesPerValue;
         if (variant == SolveVariant::coupledReducedNewton && size.dimension == 3)
-            estimate.bytes += factor * size.unknownNodes * reducedNewton3DBytesPerNode;
+            estimate.bytes += factor * (4.0 * size.blocks + size.unknownNodes * reducedNewton3DBytesPerNode);
     }
     return estimate;
 }
