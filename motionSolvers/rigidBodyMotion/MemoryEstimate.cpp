@@ -38,12 +38,12 @@ constexpr double matrixFreeBytesPerNode = 400.0;
 // reducedNewton in 3D with K iterative (ReducedNewtonSolver.hpp): the scalar K (8 bytes a block)
 // and GAMG's set-up on it (its graph and the coarse operators, transient), as for the other
 // iterative scalar Laplacians, the V-cycle's single-precision copy of K (4 bytes a block), plus
-// per unknown node the reduced Hessian's data (296 bytes,
-// ReducedHessian3D.hpp), the V-cycle's vectors (ThreeVectorMultigrid.hpp, about 130) and the
-// Newton iteration's vectors (about 50 more at the peak). Measured on the twisted hex cube
-// (peak − peak before the solver, rbmBenchmark): 148 MiB at 10⁵ cells (estimate 139 MiB),
-// 1 405 MiB at 10⁶ cells (estimate 1 431 MiB).
-constexpr double reducedNewton3DBytesPerNode = 480.0;
+// per unknown node the reduced Hessian's data (296 bytes, ReducedHessian3D.hpp), the V-cycle's
+// vectors (ThreeVectorMultigrid.hpp, about 130) and the Newton iteration's vectors at the peak
+// (about 170). Measured on the twisted hex cube (rbmBenchmark, peak minus the peak before the
+// solver is built; benchmarks/results/2026-11-25c-cpp2core-twist3D): 165 MiB at 10⁵ cells
+// (estimate 160 MiB), 1 596 MiB at 10⁶ cells (estimate 1 648 MiB).
+constexpr double reducedNewton3DBytesPerNode = 600.0;
 
 double variantFactor(SolveVariant variant)
 {

@@ -30,7 +30,11 @@
 // preconditioner (S ≤ K; S = K on fields whose neighbourhoods do not turn): K depends on
 // neither the displacements nor the boundary values, so it is factorised (2D: Cholesky) or
 // its multigrid set up ONCE, when the solver is built, and kept for every iteration, sub-step
-// and time step. Inexact Newton (Eisenstat–Walker forcing) solves early steps loosely; a
+// and time step. In 3D above 20 000 unknown nodes (one rank, no sliding nodes) K⁻¹ is ONE
+// multigrid V-cycle applied to the three components at once (ThreeVectorMultigrid.hpp, GAMG's
+// hierarchy set up on K's own arrays) and S is applied from per-node data only
+// (ReducedHessian3D.hpp); CG is flexible (Polak–Ribière), so the cycle needs not be an exact
+// inverse. Inexact Newton (Eisenstat–Walker forcing) solves early steps loosely; a
 // direction of negative curvature stops CG (Steihaug), and at the first CG iteration the step
 // is then the preconditioned gradient −K⁻¹∇Ẽ, which is exactly a local/global step. A
 // backtracking line search on Ẽ keeps every step a descent step.
@@ -47,7 +51,9 @@
 // order, so the result is bit-identical for any thread count.
 //
 // PETSc options: -rbm_reduced_max_it N (Newton steps), -rbm_reduced_monitor (one line per step);
-// the Laplacian's solver reads rbm_reduced_ (e.g. -rbm_reduced_pc_factor_mat_solver_type mumps).
+// the Laplacian's solver reads rbm_reduced_ (e.g. -rbm_reduced_pc_factor_mat_solver_type mumps,
+// -rbm_reduced_pc_gamg_threshold 0.02, -rbm_reduced_cycle_degree 3; -rbm_reduced_inner_solve: K⁻¹
+// by CG + GAMG to laplacianRelativeTolerance instead of one cycle, the behaviour before).
 // Result: iterations = Newton steps, linearIterations = CG iterations, residualNorm = ‖P∇E‖,
 // energy = E.
 
@@ -73,8 +79,8 @@ struct ReducedNewtonOptions {
     double relativeTolerance = 1e-10;                             // on ‖P∇Ẽ‖ relative to the start
     double absoluteTolerance = -1.0;                              // < 0: CoupledNewtonOptions' default
     int maximumLinearIterations = 1000;                           // CG iterations per Newton step
-    // When K is solved iteratively (3D above 20 000 unknown nodes: CG + GAMG): K⁻¹ is only the
-    // preconditioner of a flexible CG, which needs no exact inverse.
+    // When K ⊗ I is solved iteratively (3D with sliding nodes, or -rbm_reduced_inner_solve: CG +
+    // GAMG): K⁻¹ is only the preconditioner of a flexible CG, which needs no exact inverse.
     double laplacianRelativeTolerance = 1e-4;
     // Converged when no node's estimated remaining displacement, |K⁻¹ P∇Ẽ| at the node, exceeds
     // displacementTolerance × its shortest edge (≤ 0: off, only the gradient tests above).
