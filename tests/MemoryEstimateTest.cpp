@@ -121,11 +121,11 @@ TEST(MemoryEstimate, ModelFiguresFollowTheirFormulas)
     EXPECT_TRUE(estimateSolveMemory(SolveVariant::coupledReducedNewton, threeD).direct);
     // ... and against what rbmBenchmark measured for the twisted hex cube (peak minus the peak
     // before the solver was built; benchmarks/results/2026-11-25c-cpp2core-twist3D): within 10 %
-    // (estimate / measured: 0.97 and 1.03).
+    // (estimate / measured: 0.97 and 1.02).
     struct Measured {
         double unknownNodes, blocks, mebibytes;
     };
-    for (const Measured& run : {Measured{99405.0, 2569693.0, 165.0}, Measured{1009899.0, 26727295.0, 1596.0}}) {
+    for (const Measured& run : {Measured{99405.0, 2569693.0, 165.0}, Measured{1009899.0, 26727295.0, 1620.0}}) {
         const double estimate =
             estimateSolveMemory(SolveVariant::coupledReducedNewton, SolveSize{3, run.unknownNodes, run.blocks}).bytes;
         EXPECT_GT(estimate, 0.9 * run.mebibytes * 1048576.0) << run.unknownNodes;

@@ -42,7 +42,7 @@ constexpr double matrixFreeBytesPerNode = 400.0;
 // vectors (ThreeVectorMultigrid.hpp, about 130) and the Newton iteration's vectors at the peak
 // (about 170). Measured on the twisted hex cube (rbmBenchmark, peak minus the peak before the
 // solver is built; benchmarks/results/2026-11-25c-cpp2core-twist3D): 165 MiB at 10⁵ cells
-// (estimate 160 MiB), 1 596 MiB at 10⁶ cells (estimate 1 648 MiB).
+// (estimate 160 MiB), 1 620 MiB at 10⁶ cells (estimate 1 648 MiB).
 constexpr double reducedNewton3DBytesPerNode = 600.0;
 
 double variantFactor(SolveVariant variant)
