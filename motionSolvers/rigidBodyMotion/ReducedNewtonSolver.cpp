@@ -20,48 +20,6 @@ namespace rbm::motion {
 
 namespace {
 
-Vector3 times(const std::array<double, 9>& m, const Vector3& v)
-{
-    return {m[0] * v.x + m[1] * v.y + m[2] * v.z, m[3] * v.x + m[4] * v.y + m[5] * v.z,
-            m[6] * v.x + m[7] * v.y + m[8] * v.z};
-}
-
-// n nᵀ / (nᵀ H n): the inverse of H restricted to turns about n; zero where that curvature is not positive.
-std::array<double, 9> axisInverse(const std::array<double, 9>& h, const Vector3& n)
-{
-    const double curvature = dot(n, times(h, n));
-    std::array<double, 9> map{};
-    if (!(curvature > 0.0)) return map;
-    for (int p = 0; p < 3; ++p)
-        for (int q = 0; q < 3; ++q) map[3 * p + q] = n[p] * n[q] / curvature;
-    return map;
-}
-
-// H⁻¹ of a symmetric 3×3 matrix by cofactors; zero unless H is positive definite (leading
-// minors). At a best fit H_δδ is positive semi-definite; a zero map leaves S = K there, still
-// positive definite, so the step stays a descent direction.
-std::array<double, 9> symmetricInverse(const std::array<double, 9>& m)
-{
-    const double c00 = m[4] * m[8] - m[5] * m[7];
-    const double c01 = m[5] * m[6] - m[3] * m[8];
-    const double c02 = m[3] * m[7] - m[4] * m[6];
-    const double determinant = m[0] * c00 + m[1] * c01 + m[2] * c02;
-    const double scale = (m[0] + m[4] + m[8]) / 3.0;
-    const double minor2 = m[0] * m[4] - m[1] * m[3];
-    std::array<double, 9> inverse{};
-    if (!(m[0] > 0.0) || !(minor2 > 0.0) || !(determinant > 1e-12 * scale * scale * scale)) return inverse;
-    inverse[0] = c00 / determinant;
-    inverse[1] = (m[2] * m[7] - m[1] * m[8]) / determinant;
-    inverse[2] = (m[1] * m[5] - m[2] * m[4]) / determinant;
-    inverse[3] = c01 / determinant;
-    inverse[4] = (m[0] * m[8] - m[2] * m[6]) / determinant;
-    inverse[5] = (m[2] * m[3] - m[0] * m[5]) / determinant;
-    inverse[6] = c02 / determinant;
-    inverse[7] = (m[1] * m[6] - m[0] * m[7]) / determinant;
-    inverse[8] = (m[0] * m[4] - m[1] * m[3]) / determinant;
-    return inverse;
-}
-
 // Sums in index order: the same result for any thread count.
 double dotProduct(std::span<const double> a, std::span<const double> b)
 {
@@ -104,27 +62,11 @@ ReducedNewtonSolver::ReducedNewtonSolver(const RbmProblem& problem, ReducedNewto
         }
         inverseShortestEdge_[a] = std::isfinite(shortest) ? 1.0 / shortest : 0.0;
     }
-    nodeVector_.assign(n, Vector3{});
-    nodeRotation_.assign(n, Vector3{});
-    rotationMaps_.assign(problem.unknownNodeCount(), {});
     if (problem.unknownNodeCount() == 0) return;
-    if (dim == 2) {
-        planar_ = std::make_unique<PlanarReducedKernels>(problem);
-    } else if (dim == 3) {
-        // 3D: S from per-node data (ReducedHessian3D.hpp), no per-edge data.
-        hessian3D_ = std::make_unique<ReducedHessian3D>(problem);
-    } else {
-        // The general kernels' per-edge data (the planar ones keep their own).
-        edgeRotated_.assign(graph.neighbours.size(), Vector3{});
-        transposeEdge_.assign(graph.neighbours.size(), -1);
-        for (int i = 0; i < n; ++i)
-            for (int e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e) {
-                const int j = graph.neighbours[e];
-                for (int f = graph.offsets[j]; f < graph.offsets[j + 1]; ++f)
-                    if (graph.neighbours[f] == i) transposeEdge_[e] = f;
-                if (transposeEdge_[e] < 0) throw std::invalid_argument("ReducedNewtonSolver: the graph is not symmetric");
-            }
-    }
+    // The kernels of Ẽ, ∇Ẽ and S: 2D (PlanarReducedKernels.hpp) or 3D (ReducedHessian3D.hpp for S;
+    // per-node data only, nothing stored per edge).
+    if (dim == 2) planar_ = std::make_unique<PlanarReducedKernels>(problem);
+    else hessian3D_ = std::make_unique<ReducedHessian3D>(problem);
 
     // K: the displacement block of the Hessian, factorised once (file comment).
     const BlockPattern& pattern = problem.blockPattern();
@@ -272,82 +214,20 @@ void ReducedNewtonSolver::prepareHessian(std::span<const Vector3> displacement, 
         planar_->prepareHessian(displacement, rotations);
         return;
     }
-    if (hessian3D_) return hessian3D_->prepare(displacement, rotations);
-    const CellNeighbourGraph& graph = problem_.graph();
-    const std::vector<Vector3>& x = problem_.referencePoints();
-    const std::vector<int>& nodes = problem_.unknownNodes();
-    const int m = problem_.unknownNodeCount();
-    const bool planar = problem_.dimension() == 2;
-#pragma omp parallel for schedule(static) if (worthThreading(graph.neighbours.size()))
-    for (int a = 0; a < m; ++a) {
-        const int i = nodes[a];
-        // H_δδ = Σ w [(q·e) I − (e qᵀ + q eᵀ)/2]
-        std::array<double, 9> h{};
-        for (int e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e) {
-            const int j = graph.neighbours[e];
-            Vector3 d = x[j] - x[i];
-            Vector3 relative = displacement[j] - displacement[i];
-            if (planar) d.z = relative.z = 0.0;
-            const Vector3 edge = d + relative;
-            const Vector3 q = rotations[i] * d;
-            edgeRotated_[e] = q;
-            const double w = problem_.edgeWeights()[e];
-            const double qe = dot(q, edge);
-            for (int r = 0; r < 3; ++r)
-                for (int c = 0; c < 3; ++c)
-                    h[3 * r + c] += w * ((r == c ? qe : 0.0) - 0.5 * (edge[r] * q[c] + q[r] * edge[c]));
-        }
-        if (planar) rotationMaps_[a] = axisInverse(h, Vector3{0.0, 0.0, 1.0});
-        else if (problem_.rotatesAboutNormalOnly(i)) rotationMaps_[a] = axisInverse(h, problem_.slidingNormal(i));
-        else rotationMaps_[a] = symmetricInverse(h);
-    }
+    hessian3D_->prepare(displacement, rotations);
 }
 
 void ReducedNewtonSolver::applyHessian(std::span<const double> v, std::span<double> y)
 {
-    if (hessian3D_) return hessian3D_->apply(v, y);
-    const CellNeighbourGraph& graph = problem_.graph();
-    const std::vector<int>& nodes = problem_.unknownNodes();
-    const int m = problem_.unknownNodeCount();
+    if (hessian3D_) {
+        hessian3D_->apply(v, y);  // projects onto sliding planes itself
+        return;
+    }
     const int dim = problem_.dimension();
     std::vector<double>& projected = projected_;
     projected.assign(v.begin(), v.end());
     problem_.projectSliding(projected, dim);
-    if (planar_) {
-        planar_->applyHessian(projected, y);
-        problem_.projectSliding(y, dim);
-        return;
-    }
-    // Prescribed entries of nodeVector_ and nodeRotation_ stay zero.
-    for (int a = 0; a < m; ++a) {
-        Vector3& value = nodeVector_[nodes[a]];
-        for (int q = 0; q < dim; ++q) value[q] = projected[static_cast<std::size_t>(a) * dim + q];
-    }
-    // y_i = H_δδ,i⁻¹ Σ_j w (R_i d) × (v_j − v_i)
-#pragma omp parallel for schedule(static) if (worthThreading(graph.neighbours.size()))
-    for (int a = 0; a < m; ++a) {
-        const int i = nodes[a];
-        Vector3 b{};
-        for (int e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e)
-            b += problem_.edgeWeights()[e] * cross(edgeRotated_[e], nodeVector_[graph.neighbours[e]] - nodeVector_[i]);
-        nodeRotation_[i] = times(rotationMaps_[a], b);
-    }
-    // (S v)_k = (K v)_k + Σ_j w (y_k × R_k d + [j unknown] y_j × R_j d)
-#pragma omp parallel for schedule(static) if (worthThreading(graph.neighbours.size()))
-    for (int a = 0; a < m; ++a) {
-        const int k = nodes[a];
-        Vector3 sum{};
-        for (int e = graph.offsets[k]; e < graph.offsets[k + 1]; ++e) {
-            // R_k d_kj = edgeRotated_[e], R_j d_kj = −edgeRotated_[transpose].
-            const int j = graph.neighbours[e];
-            const bool unknown = problem_.isUnknown(j);
-            Vector3 term = (unknown ? 2.0 : 1.0) * (nodeVector_[k] - nodeVector_[j]) +
-                           cross(nodeRotation_[k], edgeRotated_[e]);
-            if (unknown) term -= cross(nodeRotation_[j], edgeRotated_[transposeEdge_[e]]);
-            sum += problem_.edgeWeights()[e] * term;
-        }
-        for (int q = 0; q < dim; ++q) y[static_cast<std::size_t>(a) * dim + q] = sum[q];
-    }
+    planar_->applyHessian(projected, y);
     problem_.projectSliding(y, dim);
 }
 

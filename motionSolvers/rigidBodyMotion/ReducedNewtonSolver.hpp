@@ -136,15 +136,11 @@ private:
     std::unique_ptr<ThreeVectorMultigrid> threeVectorCycle_;
     Mat factor_ = nullptr;                 // the factor inside system_'s PC (not owned)
     PetscMat components_, solutions_;      // dense m × dimension right-hand sides and solutions
-    std::vector<std::array<double, 9>> rotationMaps_;  // per unknown node: H_δδ⁻¹ (or its axis restriction)
-    std::vector<Vector3> edgeRotated_;                 // per graph edge i→j of an unknown centre: R_i d_ij
-    std::vector<int> transposeEdge_;                   // per graph edge i→j: the edge j→i
-    std::unique_ptr<ReducedHessian3D> hessian3D_;      // 3D: S from per-node data (edgeRotated_ unused)
+    std::unique_ptr<ReducedHessian3D> hessian3D_;      // 3D: S from per-node data
     std::unique_ptr<InheritedOptions> laplacianOptions_;  // rbm's defaults for the Laplacian's factorisation
     // The last two results (node displacements), for the secant predictor of warm starts.
     std::vector<Vector3> lastSolution_, previousSolution_;
-    // Work arrays (node-indexed).
-    std::vector<Vector3> nodeVector_, nodeRotation_;
+    // Work arrays (compact: dimension() entries per unknown node).
     std::vector<double> componentIn_, componentOut_, projected_;
     std::vector<double> inverseShortestEdge_;  // per unknown node, for displacementTolerance
     std::vector<double> cgResidual_, cgPreconditioned_, cgPreviousPreconditioned_, cgDirection_, cgProduct_;
