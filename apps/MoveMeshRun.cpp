@@ -255,9 +255,8 @@ std::string usageText()
 // ---- Per-cell fields for VTK ------------------------------------------------------------------
 
 struct MoveMeshRun::CellFieldWorkspace {
-    MeshTopology topology;
     std::optional<io::VtkCells> vtkCells;
-    std::unique_ptr<PseudoTwoDMesh> twoD;   // pseudo-3D meshes, for the 2D cell metrics
+    const PseudoTwoDMesh* twoD = nullptr;   // pseudo-3D meshes, for the 2D cell metrics (the assessor's)
     std::vector<Vector3> nodePositions;
 };
 
@@ -336,8 +335,9 @@ MoveMeshRun::MoveMeshRun(MoveMeshOptions options, std::ostream& out, std::ostrea
 
     // Before the solver assembles anything: does the solve fit in the memory there is?
     computeNodeClasses();
+    // The quality checks' topology (and 2D extraction) serve the memory estimate and VTK too.
+    assessor_ = std::make_unique<motion::StepAssessor>(mesh_);
     cells_ = std::make_unique<CellFieldWorkspace>();
-    cells_->topology = buildMeshTopology(mesh_);
     checkMemory();
 
     solver_ = motion::builtinMotionSolvers().create(mesh_, dynamicMeshDict_, &pointDisplacementDictionary_,
@@ -363,16 +363,10 @@ MoveMeshRun::MoveMeshRun(MoveMeshOptions options, std::ostream& out, std::ostrea
     }
     solver_->pointDisplacement() = std::move(initial);
 
-    assessor_ = std::make_unique<motion::StepAssessor>(mesh_);
     if (options_.writeVtk) {
-        cells_->vtkCells = io::vtkCellsOf(mesh_, cells_->topology);
-        if (detectPseudoTwoD(mesh_) != PseudoTwoDKind::None) {
-            try {
-                cells_->twoD = std::make_unique<PseudoTwoDMesh>(extractPseudoTwoD(mesh_, cells_->topology));
-            } catch (const InputError&) {
-                // Not a clean extrusion: the 3D cell metrics are written instead.
-            }
-        }
+        cells_->vtkCells = io::vtkCellsOf(mesh_, assessor_->topology());
+        // Not a clean extrusion (no 2D mesh): the 3D cell metrics are written instead.
+        cells_->twoD = assessor_->twoDMesh();
         pvd_ = std::make_unique<io::PvdCollection>(caseDirectory_ / "VTK" / (caseName_ + ".pvd"));
         pvd_->load();
     }
@@ -449,7 +443,7 @@ void MoveMeshRun::checkMemory()
     std::vector<std::uint8_t> prescribed(nodeClasses_.size());
     for (std::size_t p = 0; p < prescribed.size(); ++p) prescribed[p] = nodeClasses_[p] == nodePrescribed;
     const bool twoD = detectPseudoTwoD(mesh_) != PseudoTwoDKind::None;
-    const motion::SolveSize size = motion::estimateSolveSize(cells_->topology, prescribed, twoD);
+    const motion::SolveSize size = motion::estimateSolveSize(assessor_->topology(), prescribed, twoD);
     const motion::SolveVariant variant = motion::solveVariantOf(rbmOptions);
     const int systems = motion::linearSystemsAtOnce(rbmOptions);
     const motion::MemoryEstimate needed = motion::estimateSolveMemory(variant, size, rbmOptions.linearSolver, systems);
@@ -747,7 +741,7 @@ void MoveMeshRun::writeVtk(double time, const std::string& timeName, const std::
         }
     } else {
         for (std::size_t c = 0; c < cellCount; ++c) {
-            const motion::PyramidQuality pyramids = motion::cellPyramidQuality(mesh_, cells_->topology, geometry, static_cast<Label>(c));
+            const motion::PyramidQuality pyramids = motion::cellPyramidQuality(mesh_, assessor_->topology(), geometry, static_cast<Label>(c));
             quality.values[c] = pyramids.ratio;
             inverted.values[c] = pyramids.inverted ? 1.0 : 0.0;
         }
@@ -794,13 +788,12 @@ int MoveMeshRun::run()
     // The initial mesh: quality, and the first entry of the VTK series.
     std::vector<Vector3> points = solver_->curPoints();
     {
-        const QualityReport initial = assessor_->evaluate(points);
-        out_ << "Initial mesh (time " << startTimeName_ << "): worst quality "
-             << fixed(assessor_->worstCellQuality(initial), 4) << ", max non-orthogonality "
-             << fixed(initial.checkMesh.maxNonOrthogonality, 2) << ", max skewness "
-             << fixed(initial.checkMesh.maxSkewness, 3) << ", inverted " << initial.invertedCellCount() << "\n\n";
-        if (initial.invertedCellCount() > 0) {
-            err_ << "rbmMoveMesh: warning: the initial mesh already has " << initial.invertedCellCount()
+        const StepQuality initial = assessor_->evaluateStep(points);
+        out_ << "Initial mesh (time " << startTimeName_ << "): worst quality " << fixed(initial.worstCellQuality, 4)
+             << ", max non-orthogonality " << fixed(initial.maxNonOrthogonality, 2) << ", max skewness "
+             << fixed(initial.maxSkewness, 3) << ", inverted " << initial.invertedCellCount << "\n\n";
+        if (initial.invertedCellCount > 0) {
+            err_ << "rbmMoveMesh: warning: the initial mesh already has " << initial.invertedCellCount
                  << " inverted cells\n";
         }
         if (options_.writeVtk) writeVtk(startTime_, startTimeName_, points);

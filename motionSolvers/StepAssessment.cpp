@@ -40,7 +40,7 @@ PyramidQuality cellPyramidQuality(const PolyMesh& mesh, const MeshTopology& topo
 }
 
 StepAssessor::StepAssessor(const PolyMesh& mesh)
-    : mesh_(mesh), topology_(buildMeshTopology(mesh)), evaluator_(mesh)
+    : mesh_(mesh), evaluator_(mesh)
 {}
 
 StepAssessor::~StepAssessor() = default;
@@ -61,7 +61,7 @@ double StepAssessor::worstCellQuality(const QualityReport& report) const
     double worst = std::numeric_limits<double>::quiet_NaN();
     const Label cellCount = static_cast<Label>(geometry.cellVolumes.size());
     for (Label c = 0; c < cellCount; ++c) {
-        const double ratio = cellPyramidQuality(mesh_, topology_, geometry, c).ratio;
+        const double ratio = cellPyramidQuality(mesh_, evaluator_.topology(), geometry, c).ratio;
         worst = (c == 0) ? ratio : std::min(worst, ratio);
     }
     return worst;
@@ -93,11 +93,11 @@ StepVerdict StepAssessor::assess(const MotionSolveReport& solve, std::span<const
     record.converged = solve.converged && verdict.finite;
     record.reason = verdict.finite ? solve.reason : solve.reason + "; " + verdict.nonFiniteText;
     if (verdict.finite) {
-        const QualityReport quality = evaluator_.evaluate(points);
-        record.worstQuality = worstCellQuality(quality);
-        record.maxNonOrthogonality = quality.checkMesh.maxNonOrthogonality;
-        record.maxSkewness = quality.checkMesh.maxSkewness;
-        record.invertedCells = quality.invertedCellCount();
+        const StepQuality quality = evaluator_.evaluateStep(points);
+        record.worstQuality = quality.worstCellQuality;
+        record.maxNonOrthogonality = quality.maxNonOrthogonality;
+        record.maxSkewness = quality.maxSkewness;
+        record.invertedCells = quality.invertedCellCount;
     } else {
         record.worstQuality = std::numeric_limits<double>::quiet_NaN();
         record.maxNonOrthogonality = std::numeric_limits<double>::quiet_NaN();

@@ -52,8 +52,14 @@ public:
 
     // Quality of the mesh with its points at `points`; geometry() is then theirs.
     QualityReport evaluate(std::span<const Vector3> points);
+    // Only the log line's figures (worst quality, max non-orthogonality and skewness, inverted
+    // cells), each equal to the full report's, at about half the cost; geometry() is then
+    // that of `points`. What assess() evaluates.
+    StepQuality evaluateStep(std::span<const Vector3> points) { return evaluator_.evaluateStep(points); }
     const MeshGeometry& geometry() const { return evaluator_.geometry(); }
-    const MeshTopology& topology() const { return topology_; }
+    const MeshTopology& topology() const { return evaluator_.topology(); }
+    // The extracted 2D mesh of a pseudo-3D mesh, nullptr otherwise (QualityEvaluator::twoDMesh).
+    const PseudoTwoDMesh* twoDMesh() const { return evaluator_.twoDMesh(); }
     // The log line's worst quality of the report evaluate() returned last.
     double worstCellQuality(const QualityReport& report) const;
 
@@ -66,7 +72,6 @@ public:
 
 private:
     const PolyMesh& mesh_;
-    MeshTopology topology_;
     QualityEvaluator evaluator_;
 };
 

@@ -359,6 +359,52 @@ CheckMeshQuality computeCheckMeshQuality(const PolyMesh& mesh, std::span<const V
     return q;
 }
 
+CheckMeshExtremes computeCheckMeshExtremes(const PolyMesh& mesh, std::span<const Vector3> points,
+                                           const MeshGeometry& geometry, CheckMeshExtremesWorkspace& workspace)
+{
+    const Label faceCount = mesh.faceCount();
+    const Label internalFaceCount = mesh.internalFaceCount();
+    if (geometry.faceAreas.size() != static_cast<std::size_t>(faceCount) || points.size() != mesh.points.size()) {
+        throw std::invalid_argument("computeCheckMeshExtremes: the geometry (" + std::to_string(geometry.faceAreas.size()) +
+                                    " faces) or points (" + std::to_string(points.size()) +
+                                    ") do not belong to this mesh");
+    }
+    const std::span<const Vector3> faceCentres = geometry.faceCentres;
+    const std::span<const Vector3> faceAreas = geometry.faceAreas;
+    const std::span<const Vector3> cellCentres = geometry.cellCentres;
+    const Label* owner = mesh.owner.data();
+    const Label* neighbour = mesh.neighbour.data();
+
+    // The per-face measures of computeCheckMeshQuality, by threads; then its minimum and
+    // maximum in face order: the same figures, whatever the thread count.
+    auto& faceCosine = workspace.faceCosine;
+    auto& faceSkew = workspace.faceSkew;
+    faceCosine.resize(static_cast<std::size_t>(internalFaceCount));
+    faceSkew.resize(static_cast<std::size_t>(faceCount));
+#pragma omp parallel for schedule(static) if (worthThreading(static_cast<std::size_t>(faceCount)))
+    for (Label f = 0; f < faceCount; ++f) {
+        const Vector3& S = faceAreas[f];
+        const Vector3& fc = faceCentres[f];
+        const Label own = owner[f];
+        if (f < internalFaceCount) {
+            const Label nei = neighbour[f];
+            faceCosine[f] = faceNonOrthogonalityCosine(cellCentres[own], cellCentres[nei], S);
+            faceSkew[f] = faceSkewness(mesh.face(f), points, fc, S, cellCentres[own], cellCentres[nei]);
+        } else {
+            faceSkew[f] = boundaryFaceSkewness(mesh.face(f), points, fc, S, cellCentres[own]);
+        }
+    }
+    double minCosine = veryGreat;
+    for (Label f = 0; f < internalFaceCount; ++f) minCosine = std::min(minCosine, faceCosine[f]);
+    double maxSkew = 0.0;
+    for (Label f = 0; f < faceCount; ++f) maxSkew = std::max(maxSkew, faceSkew[f]);
+
+    CheckMeshExtremes extremes;
+    extremes.maxSkewness = maxSkew;
+    if (internalFaceCount > 0) extremes.maxNonOrthogonality = radiansToDegrees(std::acos(std::clamp(minCosine, -1.0, 1.0)));
+    return extremes;
+}
+
 CheckMeshQuality computeCheckMeshQuality(const PolyMesh& mesh, const MeshGeometry& geometry)
 {
     CheckMeshWorkspace workspace;

@@ -124,6 +124,20 @@ CheckMeshQuality computeCheckMeshQuality(const PolyMesh& mesh, std::span<const V
                                          const MeshGeometry& geometry, CheckMeshWorkspace& workspace);
 CheckMeshQuality computeCheckMeshQuality(const PolyMesh& mesh, const MeshGeometry& geometry);
 
+// Only the two extremes a time step's log line prints (StepAssessment.hpp), equal to the last
+// bit to computeCheckMeshQuality's maxNonOrthogonality and maxSkewness, at a third of its cost:
+// none of the other measures, no work arrays allocated (`workspace` keeps them between calls).
+struct CheckMeshExtremes {
+    double maxNonOrthogonality = 0.0;   // degrees, internal faces; 0 without internal faces
+    double maxSkewness = 0.0;           // internal and boundary faces
+};
+struct CheckMeshExtremesWorkspace {
+    std::vector<double> faceCosine;
+    std::vector<double> faceSkew;
+};
+CheckMeshExtremes computeCheckMeshExtremes(const PolyMesh& mesh, std::span<const Vector3> points,
+                                           const MeshGeometry& geometry, CheckMeshExtremesWorkspace& workspace);
+
 // The per-face measures, for tests and for locating bad faces.
 double faceNonOrthogonalityCosine(const Vector3& ownerCentre, const Vector3& neighbourCentre, const Vector3& faceArea);
 double faceSkewness(std::span<const Label> facePoints, std::span<const Vector3> points, const Vector3& faceCentre,

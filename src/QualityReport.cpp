@@ -8,6 +8,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <sstream>
 
 namespace rbm {
@@ -62,6 +63,84 @@ QualityReport QualityEvaluator::evaluate(std::span<const Vector3> points)
         report.thesis = computeThesisQuality3D(mesh_, geometry_, thesisWorkspace_);
     }
     return report;
+}
+
+StepQuality QualityEvaluator::evaluateStep(std::span<const Vector3> points)
+{
+    updateMeshGeometry(mesh_, points, geometry_);
+    StepQuality quality;
+    const CheckMeshExtremes extremes = computeCheckMeshExtremes(mesh_, points, geometry_, extremesWorkspace_);
+    quality.maxNonOrthogonality = extremes.maxNonOrthogonality;
+    quality.maxSkewness = extremes.maxSkewness;
+
+    // Per cell by threads (each writes its own slots), then the minima and the count in cell
+    // order, as computeThesisQuality2D/3D take them: the same figures for any thread count.
+    if (twoD_) {
+        const PlanarMesh& planar = twoD_->planar;
+        const Label nodes = twoD_->nodeCount();
+        nodePositions_.resize(static_cast<std::size_t>(nodes));
+#pragma omp parallel for schedule(static) if (worthThreading(static_cast<std::size_t>(nodes)))
+        for (Label n = 0; n < nodes; ++n) nodePositions_[n] = twoD_->frame.toLocal(points[twoD_->frontPointOfNode[n]]);
+        const std::span<const Vector3> positions = nodePositions_;
+        const Label cellCount = planar.cellCount();
+        cellValues_.resize(static_cast<std::size_t>(cellCount));
+        cellInverted_.resize(static_cast<std::size_t>(cellCount));
+#pragma omp parallel for schedule(static) if (worthThreading(static_cast<std::size_t>(cellCount)))
+        for (Label c = 0; c < cellCount; ++c) {
+            const auto polygon = planar.cell(c);
+            cellInverted_[c] = polygonSignedArea(polygon, positions) <= 0.0;
+            if (polygon.size() == 3) {
+                cellValues_[c] = triangleMeanRatio(positions[polygon[0]], positions[polygon[1]], positions[polygon[2]]);
+            } else if (polygon.size() == 4) {
+                cellValues_[c] = quadrilateralShape(positions[polygon[0]], positions[polygon[1]], positions[polygon[2]],
+                                                    positions[polygon[3]]);
+            }
+        }
+        // StatisticsAccumulator's minimum of each shape, then the smaller of the two.
+        StatisticsAccumulator triangles;
+        StatisticsAccumulator quadrilaterals;
+        for (Label c = 0; c < cellCount; ++c) {
+            if (cellInverted_[c]) ++quality.invertedCellCount;
+            const std::size_t size = planar.cell(c).size();
+            if (size == 3) triangles.add(cellValues_[c]);
+            else if (size == 4) quadrilaterals.add(cellValues_[c]);
+        }
+        const QualityStatistics t = triangles.result();
+        const QualityStatistics q = quadrilaterals.result();
+        double worst = std::numeric_limits<double>::quiet_NaN();
+        if (t.count > 0) worst = t.min;
+        if (q.count > 0) worst = std::isnan(worst) ? q.min : std::min(worst, q.min);
+        quality.worstCellQuality = worst;
+        return quality;
+    }
+
+    // 3D: the face pyramids of every cell with apex at its centre (ThesisQuality's inverted
+    // cells: a pyramid or the volume <= 0), and their smallest relative to the mean pyramid.
+    const Label cellCount = static_cast<Label>(geometry_.cellVolumes.size());
+    cellValues_.resize(static_cast<std::size_t>(cellCount));
+    cellInverted_.resize(static_cast<std::size_t>(cellCount));
+#pragma omp parallel for schedule(static) if (worthThreading(static_cast<std::size_t>(cellCount)))
+    for (Label c = 0; c < cellCount; ++c) {
+        const Vector3& centre = geometry_.cellCentres[c];
+        double smallest = std::numeric_limits<double>::infinity();   // 3 × the smallest pyramid
+        const auto faces = topology_.facesOf(c);
+        for (const Label f : faces) {
+            const Vector3& S = geometry_.faceAreas[f];
+            const Vector3& fc = geometry_.faceCentres[f];
+            smallest = std::min(smallest, mesh_.owner[f] == c ? dot(S, fc - centre) : dot(S, centre - fc));
+        }
+        const double volume = geometry_.cellVolumes[c];
+        cellInverted_[c] = smallest <= 0.0 || volume <= 0.0;
+        cellValues_[c] =
+            std::abs(volume) > 0.0 ? static_cast<double>(faces.size()) * (smallest / 3.0) / std::abs(volume) : 0.0;
+    }
+    double worst = std::numeric_limits<double>::quiet_NaN();
+    for (Label c = 0; c < cellCount; ++c) {
+        if (cellInverted_[c]) ++quality.invertedCellCount;
+        worst = c == 0 ? cellValues_[c] : std::min(worst, cellValues_[c]);
+    }
+    quality.worstCellQuality = worst;
+    return quality;
 }
 
 QualityReport computeQualityReport(const PolyMesh& mesh)

@@ -20,6 +20,7 @@
 #include "ThesisQuality.hpp"
 
 #include <array>
+#include <cstdint>
 #include <memory>
 #include <span>
 #include <string>
@@ -57,6 +58,20 @@ struct QualityReport {
     bool isValid() const { return thesis.invertedCellCount == 0 && !checkMesh.hasInvalidCells(); }
 };
 
+// The four figures a time step's log line and the inverted-cell policy need (rbmMoveMesh's
+// time loop, the OpenFOAM plugin; motionSolvers/StepAssessment.hpp), each equal to the last
+// bit to the same figure of the full report:
+struct StepQuality {
+    double maxNonOrthogonality = 0.0;   // report.checkMesh.maxNonOrthogonality
+    double maxSkewness = 0.0;           // report.checkMesh.maxSkewness
+    // Worst cell: 2D (thesis metrics on the extracted plane) the smallest mean-ratio q of the
+    // triangles and F_shape of the quadrilaterals (NaN without either); 3D the smallest
+    // face-pyramid ratio n_faces · min_f V_f / |V_cell| with V_f = S_f · (C_f − C)/3 (S_f
+    // outward; 1 for a cube, ≤ 0 for an inverted cell, 0 for a cell of zero volume).
+    double worstCellQuality = 0.0;
+    Label invertedCellCount = 0;        // report.invertedCellCount()
+};
+
 class QualityEvaluator {
 public:
     // Prepares the evaluation of `mesh` (its topology; the points may later move). The mesh
@@ -66,6 +81,13 @@ public:
     // The report for the mesh with its points at `points` (mesh.points or moved positions).
     QualityReport evaluate(std::span<const Vector3> points);
     QualityReport evaluate() { return evaluate(mesh_.points); }
+    // Only the figures of StepQuality, at about half the cost of evaluate(); geometry() is
+    // then that of `points` too.
+    StepQuality evaluateStep(std::span<const Vector3> points);
+
+    const MeshTopology& topology() const { return topology_; }
+    // The extracted 2D mesh of a pseudo-3D mesh (nullptr otherwise, or when the extraction failed).
+    const PseudoTwoDMesh* twoDMesh() const { return twoD_.get(); }
 
     // The geometry computed by the last evaluate().
     const MeshGeometry& geometry() const { return geometry_; }
@@ -82,6 +104,9 @@ private:
     CheckMeshWorkspace checkMeshWorkspace_;
     ThesisQualityWorkspace thesisWorkspace_;
     std::vector<Vector3> nodePositions_;
+    CheckMeshExtremesWorkspace extremesWorkspace_;
+    std::vector<double> cellValues_;            // evaluateStep: per cell q / F_shape, or pyramid ratio
+    std::vector<std::uint8_t> cellInverted_;    // evaluateStep: per cell
 };
 
 // One-off evaluation of `mesh` at its own points.

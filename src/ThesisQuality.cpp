@@ -107,6 +107,19 @@ Vector3 polygonCentroid(std::span<const Label> polygon, std::span<const Vector3>
     return {origin.x + weightedX / (3.0 * twiceArea), origin.y + weightedY / (3.0 * twiceArea), meanZ};
 }
 
+double polygonSignedArea(std::span<const Label> polygon, std::span<const Vector3> positions)
+{
+    // polygonCentroid's fan about the first node, its sum in its order.
+    const Vector3& origin = positions[polygon[0]];
+    double twiceArea = 0.0;
+    for (std::size_t a = 1; a + 1 < polygon.size(); ++a) {
+        const Vector3 u = positions[polygon[a]] - origin;
+        const Vector3 v = positions[polygon[a + 1]] - origin;
+        twiceArea += cross2(u, v);
+    }
+    return 0.5 * twiceArea;
+}
+
 double nonOrthogonalityAngle(const Vector3& ownerCentre, const Vector3& neighbourCentre, const Vector3& normal)
 {
     const Vector3 d = neighbourCentre - ownerCentre;

@@ -87,6 +87,8 @@ double quadrilateralShape(const Vector3& i, const Vector3& j, const Vector3& k, 
 // Area centroid of a polygon on (x, y) (z of the result = mean z of the nodes); for a
 // polygon of zero area, the node average. `signedArea` receives the shoelace area.
 Vector3 polygonCentroid(std::span<const Label> polygon, std::span<const Vector3> positions, double& signedArea);
+// The same signed area as polygonCentroid's, to the last bit, without the centroid.
+double polygonSignedArea(std::span<const Label> polygon, std::span<const Vector3> positions);
 
 // Angle in degrees between the centre line (from `ownerCentre` to `neighbourCentre`) and
 // the normal `normal` (pointing from owner to neighbour).

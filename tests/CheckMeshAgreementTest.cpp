@@ -21,6 +21,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <optional>
 #include <regex>
 #include <sstream>
@@ -267,6 +268,47 @@ TEST_P(CheckMeshAgreement, QualityReportCarriesTheSameFigures)
         checkMeshError = checkMeshError || log.contains(error);
     }
     EXPECT_EQ(report.isValid(), !checkMeshError);
+}
+
+TEST_P(CheckMeshAgreement, StepFiguresAreCheckMeshsAndTheFullReports)
+{
+    // QualityEvaluator::evaluateStep (what rbmMoveMesh's log line prints every step): the
+    // maxima checkMesh printed, and each of its four figures the full report's, bit for bit.
+    const Fixture& f = GetParam();
+    const rbm::PolyMesh initial = rbm::io::readPolyMesh(fixtureRoot / f.name / "constant" / "polyMesh");
+    rbm::QualityEvaluator evaluator(initial);
+    const rbm::StepQuality step = evaluator.evaluateStep(mesh_.points);
+    const CheckMeshLog log(plainLog_);
+    const auto angles = log.numbers("Mesh non-orthogonality Max: " + real + " average: " + real).value();
+    EXPECT_RELATIVE(step.maxNonOrthogonality, angles[0]);
+    EXPECT_RELATIVE(step.maxSkewness, log.number("Max skewness = " + real).value());
+    EXPECT_EQ(step.invertedCellCount, log.number(R"(Number of negative volume cells: (\d+))").value_or(0));
+
+    const rbm::QualityReport full = evaluator.evaluate(mesh_.points);
+    EXPECT_EQ(step.maxNonOrthogonality, full.checkMesh.maxNonOrthogonality);
+    EXPECT_EQ(step.maxSkewness, full.checkMesh.maxSkewness);
+    EXPECT_EQ(step.invertedCellCount, full.invertedCellCount());
+    if (full.thesis.dimension == 2) {
+        double worst = std::numeric_limits<double>::infinity();
+        if (full.thesis.triangleMeanRatio.count > 0) worst = std::min(worst, full.thesis.triangleMeanRatio.min);
+        if (full.thesis.quadrilateralShape.count > 0) worst = std::min(worst, full.thesis.quadrilateralShape.min);
+        EXPECT_EQ(step.worstCellQuality, worst);
+    } else {
+        // The smallest face pyramid (apex at the cell centre) over the mean one, cell by cell.
+        const rbm::MeshTopology topology = rbm::buildMeshTopology(initial);
+        const rbm::MeshGeometry& geometry = evaluator.geometry();
+        double worst = std::numeric_limits<double>::infinity();
+        for (Label c = 0; c < topology.cellCount; ++c) {
+            double smallest = std::numeric_limits<double>::infinity();
+            for (const Label face : topology.facesOf(c)) {
+                const rbm::Vector3 area = initial.owner[face] == c ? geometry.faceAreas[face] : -geometry.faceAreas[face];
+                smallest = std::min(smallest, rbm::dot(area, geometry.faceCentres[face] - geometry.cellCentres[c]) / 3.0);
+            }
+            worst = std::min(worst, static_cast<double>(topology.facesOf(c).size()) * smallest /
+                                        std::abs(geometry.cellVolumes[c]));
+        }
+        EXPECT_EQ(step.worstCellQuality, worst);
+    }
 }
 
 INSTANTIATE_TEST_SUITE_P(Fixtures, CheckMeshAgreement,

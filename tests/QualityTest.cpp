@@ -524,6 +524,101 @@ TEST(QualityReport, EvaluatorMeasuresMovedPointsAndComesBack)
     EXPECT_TRUE(evaluator.evaluate(mesh.points).isValid());
 }
 
+// QualityEvaluator::evaluateStep: the log line's four figures, by hand.
+
+TEST(StepQuality, OneLayerMixedMeshHasTheWorstTriangleAndTheCentreLineAngle)
+{
+    // As OneLayerMixedMeshIsMeasuredInTwoDimensions: squares (F_shape 1) and right isosceles
+    // triangles (q = 4 sqrt(3) (1/2) / (1 + 1 + 2) = sqrt(3)/2), worst = sqrt(3)/2; the
+    // largest non-orthogonality atan(1/2) across a vertical edge between triangles.
+    const PolyMesh mesh = rbm::makeExtruded2D(4, 2, {0, 0, 0}, {4, 2, 0.1}, rbm::PlanarCellKind::Mixed);
+    rbm::QualityEvaluator evaluator(mesh);
+    const rbm::StepQuality step = evaluator.evaluateStep(mesh.points);
+    EXPECT_NEAR(step.worstCellQuality, std::sqrt(3.0) / 2, 1e-14);
+    EXPECT_NEAR(step.maxNonOrthogonality, degrees(std::atan(0.5)), 1e-10);
+    EXPECT_EQ(step.invertedCellCount, 0);
+    // The same figures as the full report, to the last bit.
+    const rbm::QualityReport full = evaluator.evaluate(mesh.points);
+    EXPECT_EQ(step.maxNonOrthogonality, full.checkMesh.maxNonOrthogonality);
+    EXPECT_EQ(step.maxSkewness, full.checkMesh.maxSkewness);
+    EXPECT_EQ(step.worstCellQuality, std::min(full.thesis.triangleMeanRatio.min, full.thesis.quadrilateralShape.min));
+}
+
+TEST(StepQuality, FoldedTwoDimensionalCellsAreCountedByTheirArea)
+{
+    // As EvaluatorMeasuresMovedPointsAndComesBack: node (1, 1) pushed to x = 4 folds the two
+    // cells on its right, (1,0) (2,0) (2,1) (4,1) and (4,1) (2,1) (2,2) (1,2): signed area
+    // -0.5 each (shoelace), F_shape 8 / (11/1 + 2/1 + 5/-2 + 14/-2) = 16/7: positive although
+    // folded, so F_shape alone does not flag them; the area does. Worst: the two stretched
+    // cells on its left, (0,0) (1,0) (4,1) (0,1): corner terms tr/det 2/1 + 11/1 + 26/4 + 17/4
+    // = 95/4, F_shape 32/95.
+    const PolyMesh mesh = rbm::makeExtruded2D(3, 3, {0, 0, 0}, {3, 3, 1});
+    rbm::QualityEvaluator evaluator(mesh);
+    auto moved = mesh.points;
+    for (auto& p : moved) {
+        if (p.x == 1.0 && p.y == 1.0) p.x = 4.0;
+    }
+    const rbm::StepQuality step = evaluator.evaluateStep(moved);
+    const rbm::QualityReport full = evaluator.evaluate(moved);
+    EXPECT_EQ(step.invertedCellCount, 2);
+    EXPECT_EQ(step.invertedCellCount, full.thesis.invertedCellCount);
+    EXPECT_NEAR(step.worstCellQuality, 32.0 / 95.0, 1e-15);
+    EXPECT_EQ(step.worstCellQuality, full.thesis.quadrilateralShape.min);
+    EXPECT_EQ(step.maxNonOrthogonality, full.checkMesh.maxNonOrthogonality);
+    EXPECT_EQ(step.maxSkewness, full.checkMesh.maxSkewness);
+    // Back at the initial points: unit squares, F_shape 1, nothing inverted, orthogonal.
+    const rbm::StepQuality back = evaluator.evaluateStep(mesh.points);
+    EXPECT_EQ(back.invertedCellCount, 0);
+    EXPECT_NEAR(back.worstCellQuality, 1.0, 1e-15);
+    EXPECT_NEAR(back.maxNonOrthogonality, 0.0, 1e-6);
+    EXPECT_NEAR(back.maxSkewness, 0.0, 1e-12);
+}
+
+TEST(StepQuality, ThreeDimensionalWorstIsTheSmallestPyramidOverTheMeanOne)
+{
+    // Sheared pair, shear s: the cube's six pyramids are 1/6 each (ratio 1). The
+    // parallelepiped (volume 1): apex at its centre (1.5, 0.5 + s/2, 0.5); its x = 1 face
+    // (area 1, normal -x) gives 0.5/3, the x = 2 face likewise, the y faces (area vectors
+    // (-s, ±1, 0)·... ) and z faces each 1/6: ratio 6 · (1/6) / 1 = 1 again for a pure
+    // parallelepiped. A non-planar cell gives less: push one far point of cell 1 out in z.
+    const PolyMesh pair = shearedPair(0.5);
+    rbm::QualityEvaluator evaluator(pair);
+    const rbm::StepQuality step = evaluator.evaluateStep(pair.points);
+    EXPECT_NEAR(step.worstCellQuality, 1.0, 1e-14);
+    EXPECT_EQ(step.invertedCellCount, 0);
+    EXPECT_NEAR(step.maxNonOrthogonality, degrees(std::atan(0.5 / 2)), 1e-10)
+        << "centre line (1, s/2, 0) against the face normal (1, 0, 0)";
+
+    // Mirror cell 1 through x = 1 (its far points to x = 0): it turns inside out, volume < 0.
+    auto mirrored = pair.points;
+    for (std::size_t p = 8; p < mirrored.size(); ++p) mirrored[p].x = 0.0;
+    const rbm::StepQuality inverted = evaluator.evaluateStep(mirrored);
+    const rbm::QualityReport full = evaluator.evaluate(mirrored);
+    EXPECT_EQ(inverted.invertedCellCount, 1);
+    EXPECT_EQ(full.thesis.invertedCellCount, 1);
+    EXPECT_LE(inverted.worstCellQuality, 0.0);
+    EXPECT_EQ(inverted.maxNonOrthogonality, full.checkMesh.maxNonOrthogonality);
+    EXPECT_EQ(inverted.maxSkewness, full.checkMesh.maxSkewness);
+}
+
+TEST(StepQuality, PolygonSignedAreaIsPolygonCentroidsToTheLastBit)
+{
+    // Far from the origin, where the fan about the first node matters.
+    const std::vector<Vector3> positions = {{1e6 + 0.1, 3e5 + 0.7, 0}, {1e6 + 1.3, 3e5 + 0.2, 0},
+                                            {1e6 + 1.9, 3e5 + 1.1, 0}, {1e6 + 0.4, 3e5 + 1.6, 0},
+                                            {1e6 - 0.3, 3e5 + 1.2, 0}};
+    for (const std::vector<Label>& polygon : std::vector<std::vector<Label>>{{0, 1, 2}, {0, 1, 2, 3}, {0, 1, 2, 3, 4},
+                                                                               {4, 3, 2, 1, 0}}) {
+        double area = 0.0;
+        (void)rbm::polygonCentroid(polygon, positions, area);
+        EXPECT_EQ(rbm::polygonSignedArea(polygon, positions), area);
+    }
+    // The unit square: 1; clockwise: -1.
+    const std::vector<Vector3> square = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+    EXPECT_EQ(rbm::polygonSignedArea(std::vector<Label>{0, 1, 2, 3}, square), 1.0);
+    EXPECT_EQ(rbm::polygonSignedArea(std::vector<Label>{3, 2, 1, 0}, square), -1.0);
+}
+
 TEST(QualityReport, JsonWritesNonFiniteNumbersAsNull)
 {
     rbm::QualityReport report;

@@ -449,6 +449,16 @@ TEST(ThreadDeterminism, QualityMetricsAreTheSameForOneTwoAndThreeThreads)
     const QualityReport boxReport = boxEvaluator.evaluate(jittered);
     EXPECT_EQ(boxReport.thesis.dimension, 3);
     EXPECT_GT(boxReport.thesis.skewness.max, 0.0);
+
+    // The log line's figures (evaluateStep), 2D and 3D.
+    const auto stepFigures = [](const StepQuality& q) {
+        return std::vector<double>{q.maxNonOrthogonality, q.maxSkewness, q.worstCellQuality,
+                                   static_cast<double>(q.invertedCellCount)};
+    };
+    expectSameForEveryThreadCount<StepQuality>([&] { return evaluator.evaluateStep(points); }, stepFigures,
+                                               "step figures of the sheared airfoil mesh");
+    expectSameForEveryThreadCount<StepQuality>([&] { return boxEvaluator.evaluateStep(jittered); }, stepFigures,
+                                               "step figures of the jittered box");
 }
 
 TEST(ThreadDeterminism, LocalGlobalSolvesAreTheSameForOneTwoAndThreeThreads)
