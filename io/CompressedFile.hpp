@@ -2,6 +2,7 @@
 // Whole-file reading and writing with transparent gzip, as OpenFOAM does:
 // a file "points" may be stored as "points.gz".
 
+#include <cstddef>
 #include <filesystem>
 #include <string>
 #include <string_view>
@@ -23,5 +24,12 @@ std::string readFileContents(const std::filesystem::path& path);
 // Writes `contents` to `path`, gzip-compressed when `compress` is true (then ".gz" is
 // appended to the name). Returns the path written. Throws std::runtime_error on failure.
 std::filesystem::path writeFileContents(const std::filesystem::path& path, std::string_view contents, bool compress);
+
+// Up to this many bytes a gzip file is compressed in one piece (libdeflate, fast; a buffer of
+// the compressed size), beyond it as a stream (zlib, 128 KiB of buffer): the same format.
+inline constexpr std::size_t oneShotGzipLimit = std::size_t{256} << 20;
+// As above with another limit (tests: the streaming path on small files).
+std::filesystem::path writeFileContents(const std::filesystem::path& path, std::string_view contents, bool compress,
+                                        std::size_t oneShotLimit);
 
 } // namespace rbm::io

@@ -34,7 +34,7 @@ targets=(${FUZZ_TARGETS:-dictionaryFuzzer asciiListFuzzer binaryListFuzzer point
 parallel=${FUZZ_PARALLEL:-2}
 
 # clang-14 brings libFuzzer and the sanitizers with libclang-rt-14-dev (libclang_rt.fuzzer*.a).
-packages=(clang-14 libclang-rt-14-dev cmake make zlib1g-dev)
+packages=(clang-14 libclang-rt-14-dev cmake make pkg-config zlib1g-dev libdeflate-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

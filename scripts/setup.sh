@@ -8,7 +8,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-packages=(build-essential cmake pkg-config petsc-dev libsuitesparse-dev libvtk9-dev libgtest-dev zlib1g-dev openmpi-bin libopenblas0
+packages=(build-essential cmake pkg-config petsc-dev libsuitesparse-dev libvtk9-dev libgtest-dev zlib1g-dev libdeflate-dev openmpi-bin libopenblas0
           openfoam libopenfoam xz-utils)
 missing=()
 for p in "${packages[@]}"; do
