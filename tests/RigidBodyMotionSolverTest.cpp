@@ -1499,6 +1499,37 @@ TEST(Stiffening, NearestSurfaceMatchesABruteForceSearch)
     }
 }
 
+TEST(Stiffening, NearestSurfaceWithAHintGivesTheSameDistances)
+{
+    // A hint (the last query's nearest primitive, a stale one, none, or out of range) only
+    // bounds the search: the distances equal the plain search's to the last bit, and each
+    // equals the brute-force distance to the two box sides.
+    const PolyMesh mesh = makeHexBox(4, 3, 3, {0, 0, 0}, {4, 3, 3});
+    const std::vector<Label> patches{mesh.findPatch("xMin"), mesh.findPatch("zMax")};
+    const NearestSurface surface = patchSurface(mesh, mesh.points, patches);
+    std::mt19937 random(11);
+    std::uniform_real_distribution<double> coordinate(-2.0, 6.0);
+    int hint = -1;
+    for (int k = 0; k < 300; ++k) {
+        const Vector3 p{coordinate(random), coordinate(random), coordinate(random)};
+        if (k % 50 == 7) hint = 1000000;   // out of range: ignored
+        if (k % 50 == 9) hint = 0;         // some primitive, likely far from p
+        const double plain = surface.distance(p);
+        const double hinted = surface.distance(p, hint);
+        EXPECT_EQ(hinted, plain) << p;
+        ASSERT_GE(hint, 0);
+        ASSERT_LT(hint, static_cast<int>(surface.size()));
+        auto clampTo = [](double v, double lo, double hi) { return std::clamp(v, lo, hi); };
+        const double toXMin = norm(p - Vector3{0.0, clampTo(p.y, 0, 3), clampTo(p.z, 0, 3)});
+        const double toZMax = norm(p - Vector3{clampTo(p.x, 0, 4), clampTo(p.y, 0, 3), 3.0});
+        EXPECT_NEAR(hinted, std::min(toXMin, toZMax), 1e-12) << p;
+        // The hint is a nearest primitive: searching again from it gives the same distance.
+        int again = hint;
+        EXPECT_EQ(surface.distance(p, again), plain);
+        EXPECT_EQ(again, hint);
+    }
+}
+
 TEST(Stiffening, FactorsFallWithTheDistanceToThePatch)
 {
     // 2D rows of unit squares above the bottom patch: a horizontal edge at height y has its

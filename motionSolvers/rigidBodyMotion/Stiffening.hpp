@@ -37,6 +37,10 @@ public:
     std::size_t size() const { return primitives_.size(); }
     // Euclidean distance to the nearest primitive (+∞ when there is none).
     double distance(const Vector3& point) const;
+    // The same distance, to the last bit, faster for a point near the one before: `hint` is the
+    // nearest primitive of an earlier query (-1: none), whose distance bounds the search from
+    // the start; it receives this query's nearest primitive.
+    double distance(const Vector3& point, int& hint) const;
 
 private:
     struct Primitive {
