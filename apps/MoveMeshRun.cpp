@@ -335,13 +335,17 @@ MoveMeshRun::MoveMeshRun(MoveMeshOptions options, std::ostream& out, std::ostrea
 
     // Before the solver assembles anything: does the solve fit in the memory there is?
     computeNodeClasses();
-    // The quality checks' topology (and 2D extraction) serve the memory estimate and VTK too.
-    assessor_ = std::make_unique<motion::StepAssessor>(mesh_);
-    cells_ = std::make_unique<CellFieldWorkspace>();
-    checkMemory();
+    MeshTopology topology = buildMeshTopology(mesh_);
+    checkMemory(topology);
 
     solver_ = motion::builtinMotionSolvers().create(mesh_, dynamicMeshDict_, &pointDisplacementDictionary_,
                                                      caseDirectory_);
+    // The quality checks: the topology above (the memory estimate's, and VTK's below) and the
+    // solver's 2D mesh of a pseudo-3D case, each built once.
+    const auto* rbmSolver = dynamic_cast<const motion::RigidBodyMotionSolver*>(solver_.get());
+    assessor_ = std::make_unique<motion::StepAssessor>(mesh_, std::move(topology),
+                                                       rbmSolver ? rbmSolver->twoDMesh() : nullptr);
+    cells_ = std::make_unique<CellFieldWorkspace>();
 
     // The displacement at the start time: the start folder's internalField (zero in a fresh
     // case; the total displacement of that time in a folder an earlier run wrote). It is the
@@ -426,7 +430,7 @@ void MoveMeshRun::computeNodeClasses()
     }
 }
 
-void MoveMeshRun::checkMemory()
+void MoveMeshRun::checkMemory(const MeshTopology& topology)
 {
     // Only the RBM solver has a model (MemoryEstimate.hpp); its options are read again by the
     // solver, which reports their errors.
@@ -443,7 +447,7 @@ void MoveMeshRun::checkMemory()
     std::vector<std::uint8_t> prescribed(nodeClasses_.size());
     for (std::size_t p = 0; p < prescribed.size(); ++p) prescribed[p] = nodeClasses_[p] == nodePrescribed;
     const bool twoD = detectPseudoTwoD(mesh_) != PseudoTwoDKind::None;
-    const motion::SolveSize size = motion::estimateSolveSize(assessor_->topology(), prescribed, twoD);
+    const motion::SolveSize size = motion::estimateSolveSize(topology, prescribed, twoD);
     const motion::SolveVariant variant = motion::solveVariantOf(rbmOptions);
     const int systems = motion::linearSystemsAtOnce(rbmOptions);
     const motion::MemoryEstimate needed = motion::estimateSolveMemory(variant, size, rbmOptions.linearSolver, systems);

@@ -150,7 +150,7 @@ private:
     // Stops a run whose solve would not fit in memory; with `linearSolver automatic`, a 2D
     // linearized solve whose factorisation would not fit is switched to matrix-free instead
     // (in dynamicMeshDict_, before the solver reads it) and memoryNote_ says so.
-    void checkMemory();
+    void checkMemory(const MeshTopology& topology);
     // Throws rbm::InputError naming the patch whose condition gave a NaN or infinite
     // displacement at `time` (called after updateBoundaryConditions).
     void checkBoundaryDisplacementIsFinite(double time) const;

@@ -43,6 +43,10 @@ StepAssessor::StepAssessor(const PolyMesh& mesh)
     : mesh_(mesh), evaluator_(mesh)
 {}
 
+StepAssessor::StepAssessor(const PolyMesh& mesh, MeshTopology topology, const PseudoTwoDMesh* twoD)
+    : mesh_(mesh), evaluator_(mesh, std::move(topology), twoD)
+{}
+
 StepAssessor::~StepAssessor() = default;
 
 QualityReport StepAssessor::evaluate(std::span<const Vector3> points) { return evaluator_.evaluate(points); }

@@ -46,6 +46,8 @@ class StepAssessor {
 public:
     // The mesh (its topology; the points move) must outlive the assessor.
     explicit StepAssessor(const PolyMesh& mesh);
+    // With the mesh's topology and 2D mesh built already (QualityEvaluator's second constructor).
+    StepAssessor(const PolyMesh& mesh, MeshTopology topology, const PseudoTwoDMesh* twoD);
     ~StepAssessor();
     StepAssessor(const StepAssessor&) = delete;
     StepAssessor& operator=(const StepAssessor&) = delete;

@@ -13,15 +13,18 @@
 
 namespace rbm {
 
-QualityEvaluator::QualityEvaluator(const PolyMesh& mesh) : mesh_(mesh), topology_(buildMeshTopology(mesh))
-{
-    const auto counts = countCellShapes(mesh_, topology_);
-    for (std::size_t i = 0; i < cellShapeCounts_.size() && i < counts.size(); ++i) cellShapeCounts_[i] = counts[i];
+QualityEvaluator::QualityEvaluator(const PolyMesh& mesh) : QualityEvaluator(mesh, buildMeshTopology(mesh), nullptr) {}
 
+QualityEvaluator::QualityEvaluator(const PolyMesh& mesh, MeshTopology topology, const PseudoTwoDMesh* twoD)
+    : mesh_(mesh), topology_(std::move(topology))
+{
     pseudoTwoD_ = detectPseudoTwoD(mesh_);
-    if (pseudoTwoD_ != PseudoTwoDKind::None) {
+    if (twoD && pseudoTwoD_ != PseudoTwoDKind::None) {
+        twoD_ = twoD;
+    } else if (pseudoTwoD_ != PseudoTwoDKind::None) {
         try {
-            twoD_ = std::make_unique<PseudoTwoDMesh>(extractPseudoTwoD(mesh_, topology_));
+            ownTwoD_ = std::make_unique<PseudoTwoDMesh>(extractPseudoTwoD(mesh_, topology_));
+            twoD_ = ownTwoD_.get();
         } catch (const InputError& error) {
             // Not a clean one-layer extrusion: the thesis metrics fall back to 3D, and the
             // report says why.
@@ -46,6 +49,11 @@ QualityReport QualityEvaluator::evaluate(std::span<const Vector3> points)
     report.pointZoneCount = static_cast<Label>(mesh_.pointZones.size());
     report.faceZoneCount = static_cast<Label>(mesh_.faceZones.size());
     report.cellZoneCount = static_cast<Label>(mesh_.cellZones.size());
+    if (!haveCellShapeCounts_) {
+        const auto counts = countCellShapes(mesh_, topology_);
+        for (std::size_t i = 0; i < cellShapeCounts_.size() && i < counts.size(); ++i) cellShapeCounts_[i] = counts[i];
+        haveCellShapeCounts_ = true;
+    }
     report.cellShapeCounts = cellShapeCounts_;
     report.pseudoTwoD = pseudoTwoD_;
     report.twoDExtractionProblem = twoDExtractionProblem_;

@@ -77,6 +77,10 @@ public:
     // Prepares the evaluation of `mesh` (its topology; the points may later move). The mesh
     // must outlive the evaluator.
     explicit QualityEvaluator(const PolyMesh& mesh);
+    // The same with the mesh's topology built already (buildMeshTopology(mesh)) and, for a
+    // pseudo-3D mesh, its extracted 2D mesh (extractPseudoTwoD(mesh), e.g. the motion
+    // solver's), which must outlive the evaluator; nullptr: extracted here as above.
+    QualityEvaluator(const PolyMesh& mesh, MeshTopology topology, const PseudoTwoDMesh* twoD);
 
     // The report for the mesh with its points at `points` (mesh.points or moved positions).
     QualityReport evaluate(std::span<const Vector3> points);
@@ -87,7 +91,7 @@ public:
 
     const MeshTopology& topology() const { return topology_; }
     // The extracted 2D mesh of a pseudo-3D mesh (nullptr otherwise, or when the extraction failed).
-    const PseudoTwoDMesh* twoDMesh() const { return twoD_.get(); }
+    const PseudoTwoDMesh* twoDMesh() const { return twoD_; }
 
     // The geometry computed by the last evaluate().
     const MeshGeometry& geometry() const { return geometry_; }
@@ -96,10 +100,12 @@ public:
 private:
     const PolyMesh& mesh_;
     MeshTopology topology_;
-    std::array<Label, 5> cellShapeCounts_{};
+    std::array<Label, 5> cellShapeCounts_{};   // counted at the first evaluate() (evaluateStep needs none)
+    bool haveCellShapeCounts_ = false;
     PseudoTwoDKind pseudoTwoD_ = PseudoTwoDKind::None;
     std::string twoDExtractionProblem_;
-    std::unique_ptr<PseudoTwoDMesh> twoD_;
+    std::unique_ptr<PseudoTwoDMesh> ownTwoD_;
+    const PseudoTwoDMesh* twoD_ = nullptr;     // ownTwoD_ or the one given
     MeshGeometry geometry_;
     CheckMeshWorkspace checkMeshWorkspace_;
     ThesisQualityWorkspace thesisWorkspace_;
