@@ -46,6 +46,8 @@
 #include "PatchBoundaryConditions.hpp"
 #include "RigidBodyMotionSolver.hpp"
 #include "Rotation.hpp"
+#include "RunLog.hpp"
+#include "StepAssessment.hpp"
 
 #include <petscversion.h>
 
@@ -891,7 +893,9 @@ Record runPitchingTask(const std::string& variant, int steps, const fs::path& ai
     started = Clock::now();
     motion::RigidBodyMotionSolver solver(mesh, coefficients,
                                         motion::makePatchBoundaryConditions(mesh, &pointDisplacement, workDir), workDir);
-    QualityEvaluator evaluator(mesh);
+    // rbmMoveMesh's per-step check (the log line's figures and the inverted-cell policy), on
+    // the solver's 2D mesh as there.
+    motion::StepAssessor assessor(mesh, buildMeshTopology(mesh), solver.twoDMesh());
     record.set("constructSeconds", secondsSince(started));
 
     std::vector<double> solveTimes;
@@ -913,15 +917,16 @@ Record runPitchingTask(const std::string& variant, int steps, const fs::path& ai
         solveTimes.push_back(secondsSince(stepStart));
         solveCpuTimes.push_back(processCpuSeconds() - stepCpuStart);
         const std::vector<Vector3> points = solver.curPoints();
-        const QualityReport quality = evaluator.evaluate(points);
+        io::StepLogRecord quality;
+        assessor.assess(report, solver.pointDisplacement(), points, quality);
         io::writePolyMeshPoints(workDir, "pitching", points, writeOptions("binaryGzip"));
         stepTimes.push_back(secondsSince(stepStart));
         stepCpuTimes.push_back(processCpuSeconds() - stepCpuStart);
-        maxInverted = std::max(maxInverted, quality.invertedCellCount());
+        maxInverted = std::max(maxInverted, static_cast<Label>(quality.invertedCells));
         // One line per step on standard error (the parent keeps it in the run's log).
         std::cerr << "step " << step << " solve " << solveTimes.back() << " s (cpu " << solveCpuTimes.back()
                   << ") iterations " << report.iterations << " sub-steps " << report.subStepCount << " residual "
-                  << report.residual << " energy " << report.energy << " inverted " << quality.invertedCellCount()
+                  << report.residual << " energy " << report.energy << " inverted " << quality.invertedCells
                   << " " << report.reason << '\n';
         subSteps += report.subStepCount;
         iterations += report.iterations;

@@ -52,7 +52,10 @@ void MotionSolver::setPatchDisplacement(std::string_view patchName, std::span<co
 {
     if (!conditions_)
         throw std::logic_error("setPatchDisplacement: the host evaluates this solver's boundary conditions");
-    if (conditions_->setPatchDisplacement(patchName, displacement, pointDisplacement_)) boundary_ = conditions_->describe();
+    if (conditions_->setPatchDisplacement(patchName, displacement, pointDisplacement_)) {
+        boundary_ = conditions_->describe();
+        ++boundaryRevision_;
+    }
 }
 
 std::vector<Vector3> MotionSolver::curPoints() const

@@ -26,6 +26,7 @@
 #include "PolyMesh.hpp"
 #include "Vector3.hpp"
 
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <span>
@@ -73,6 +74,9 @@ public:
     std::vector<Vector3>& pointDisplacement() { return pointDisplacement_; }
     // Node classes and sliding planes per patch, as solve() uses them.
     const BoundaryDescription& boundary() const { return boundary_; }
+    // Counts the changes of boundary() (setPatchDisplacement replacing a condition): a solver
+    // keeps what it derived from it while this stays the same.
+    std::uint64_t boundaryRevision() const { return boundaryRevision_; }
     const std::vector<Vector3>& pointDisplacement() const { return pointDisplacement_; }
 
     // Evaluates every patch's boundary condition at `time` into pointDisplacement().
@@ -100,7 +104,8 @@ protected:
     std::filesystem::path caseDirectory_;
     std::vector<Vector3> points0_;
     std::vector<Vector3> pointDisplacement_;
-    BoundaryDescription boundary_;
+    BoundaryDescription boundary_;   // assigned in MotionSolver.cpp only, which counts it in boundaryRevision_
+    std::uint64_t boundaryRevision_ = 0;
     // The conditions rbm evaluates; null when the host describes the boundary.
     std::unique_ptr<BoundaryConditions> conditions_;
 };

@@ -476,6 +476,44 @@ TEST(RigidBodyMotionSolverBoundaries, TwoDimensionalSlidingNormalsLieInThePlane)
     EXPECT_EQ(sliding, 3);  // the bottom nodes between the fixed left and right corners
 }
 
+TEST(RigidBodyMotionSolverBoundaries, APatchTheHostPrescribesLaterIsPrescribedFromTheNextSolveOn)
+{
+    // The solver keeps its node classes between solves while boundary() stays the same
+    // (boundaryRevision); a host that prescribes a free patch changes them.
+    const PolyMesh mesh = makeExtruded2D(4, 3, {0, 0, 0}, {4, 3, 1});
+    const io::Dictionary field = parse(R"(
+        boundaryField
+        {
+            left   { type fixedValue; value uniform (0.2 0 0); }
+            right  { type fixedValue; value uniform (0 0 0); }
+            bottom { type fixedValue; value uniform (0 0 0); }
+            top    { type zeroGradient; }
+            frontAndBack { type empty; }
+        })", "0/pointDisplacement");
+    auto solver = makeSolver(mesh, "formulation linearized; subSteps 1;", &field);
+    const std::uint64_t revision = solver->boundaryRevision();
+    ASSERT_TRUE(solver->solve().converged);
+    ASSERT_TRUE(solver->solve().converged);   // the same boundary: the same classes
+    EXPECT_EQ(solver->boundaryRevision(), revision);
+    const std::vector<Label> top = patchMeshPoints(mesh, mesh.findPatch("top"));
+    const Label corner = nearestPoint(mesh, {2, 3, 0});   // inside the top edge, free so far
+    EXPECT_NE(solver->curPoints()[corner].x, mesh.points[corner].x) << "a free top node moves with the left side";
+
+    // The top held where it is: from now on its nodes stay exactly in place.
+    solver->setPatchDisplacement("top", std::vector<Vector3>(top.size()));
+    EXPECT_EQ(solver->boundaryRevision(), revision + 1);
+    ASSERT_TRUE(solver->solve().converged);
+    const std::vector<Vector3> points = solver->curPoints();
+    for (const Label p : top) EXPECT_EQ(points[p], mesh.points[p]) << "top point " << p;
+    const RigidBodyMotionSolver& rbm = asRbm(*solver);
+    EXPECT_EQ(rbm.problem()->kind(rbm.twoDMesh()->nodeOfPoint[corner]), NodeKind::prescribed);
+    // Setting it again gives new values, not a new condition: the revision stays.
+    solver->setPatchDisplacement("top", std::vector<Vector3>(top.size(), Vector3{0.01, 0, 0}));
+    EXPECT_EQ(solver->boundaryRevision(), revision + 1);
+    ASSERT_TRUE(solver->solve().converged);
+    for (const Label p : top) EXPECT_EQ(solver->curPoints()[p], mesh.points[p] + Vector3(0.01, 0, 0));
+}
+
 TEST(RigidBodyMotionSolverBoundaries, HostErrorsAndUnsupportedTopologyChanges)
 {
     const PolyMesh mesh = makeHexBox(2, 2, 2, {0, 0, 0}, {1, 1, 1});

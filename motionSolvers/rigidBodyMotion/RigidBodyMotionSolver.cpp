@@ -20,6 +20,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <numbers>
 #include <stdexcept>
@@ -279,6 +280,7 @@ struct RigidBodyMotionSolver::Impl {
     std::vector<std::uint8_t> pointIsPrescribed;  // per mesh point: written by a condition, not by the solver
     std::unique_ptr<RbmProblem> problem;
     std::unique_ptr<RbmSolver> baseSolver;  // for `problem`, kept between solve() calls
+    std::uint64_t problemBoundaryRevision = 0;  // owner.boundaryRevision() the node classes were derived from
 
     RbmState state;
     bool hasState = false;
@@ -290,6 +292,11 @@ struct RigidBodyMotionSolver::Impl {
     std::vector<double> smallestPyramid;
     std::vector<int> faceCounts;
     Label initialInverted = 0;
+    // The last check without a cell list: its displacement and figures. A solve checks its
+    // last sub-step's result, then (unchanged unless untangled) the state it keeps.
+    std::vector<Vector3> checkedDisplacement;
+    Label checkedInverted = -1;   // -1: none yet
+    double checkedWorst = 0.0;
 
     Impl(RigidBodyMotionSolver& solver, RigidBodyMotionOptions solverOptions);
 
@@ -391,6 +398,9 @@ void RigidBodyMotionSolver::Impl::chooseAutomaticStiffening(std::span<const Vect
 
 void RigidBodyMotionSolver::Impl::updateProblem()
 {
+    // The node classes depend on the boundary description (and the fixed graph) only.
+    if (problem && owner.boundaryRevision() == problemBoundaryRevision) return;
+    problemBoundaryRevision = owner.boundaryRevision();
     const int n = nodeCount();
     std::vector<NodeConstraint> classes(n);
     std::vector<int> prescriber(n, -1);
@@ -573,6 +583,14 @@ Label RigidBodyMotionSolver::Impl::countInverted(std::span<const Vector3> nodeDi
                                                 std::vector<Label>* invertedCells)
 {
     if (invertedCells) invertedCells->clear();
+    const bool remember = invertedCells == nullptr;
+    static_assert(sizeof(Vector3) == 3 * sizeof(double));
+    if (remember && checkedInverted >= 0 && checkedDisplacement.size() == nodeDisplacement.size() &&
+        std::memcmp(nodeDisplacement.data(), checkedDisplacement.data(), nodeDisplacement.size() * sizeof(Vector3)) == 0) {
+        // The same bits: the same figures.
+        if (worstQuality) *worstQuality = checkedWorst;
+        return checkedInverted;
+    }
     double worst = std::numeric_limits<double>::infinity();
     Label inverted = 0;
     if (twoD) {
@@ -588,7 +606,7 @@ Label RigidBodyMotionSolver::Impl::countInverted(std::span<const Vector3> nodeDi
                 ++inverted;
                 if (invertedCells) invertedCells->push_back(c);
             }
-            if (!worstQuality) continue;
+            if (!worstQuality && !remember) continue;
             const auto cell = planar.cell(c);
             if (cell.size() == 3)
                 worst = std::min(worst, triangleMeanRatio(positions[cell[0]], positions[cell[1]], positions[cell[2]]));
@@ -627,11 +645,17 @@ Label RigidBodyMotionSolver::Impl::countInverted(std::span<const Vector3> nodeDi
                 if (invertedCells) invertedCells->push_back(static_cast<Label>(c));
             }
             // Smallest pyramid relative to the mean pyramid V / faces: 1 for a cube, ≤ 0 when inverted.
-            if (worstQuality && std::abs(volume) > 0.0)
+            if ((worstQuality || remember) && std::abs(volume) > 0.0)
                 worst = std::min(worst, smallestPyramid[c] * faceCounts[c] / std::abs(volume));
         }
     }
-    if (worstQuality) *worstQuality = std::isfinite(worst) ? worst : 1.0;
+    worst = std::isfinite(worst) ? worst : 1.0;
+    if (worstQuality) *worstQuality = worst;
+    if (remember) {
+        checkedDisplacement.assign(nodeDisplacement.begin(), nodeDisplacement.end());
+        checkedInverted = inverted;
+        checkedWorst = worst;
+    }
     return inverted;
 }
 
