@@ -323,7 +323,8 @@ MoveMeshRun::MoveMeshRun(MoveMeshOptions options, std::ostream& out, std::ostrea
     TopologyCheckOptions topologyChecks;
     topologyChecks.checkCellVolumes = false;
     topologyChecks.maxMessages = 5;
-    if (const auto problems = checkPolyMeshOrdering(mesh_, topologyChecks); !problems.empty()) {
+    MeshTopology topology;   // built by the check, kept for the memory estimate, quality checks and VTK
+    if (const auto problems = checkPolyMeshOrdering(mesh_, topologyChecks, topology); !problems.empty()) {
         std::string text = "the mesh breaks OpenFOAM's polyMesh rules (files faces, owner, neighbour):";
         for (const std::string& problem : problems) text += "\n  " + problem;
         throw InputError(polyMeshFolder.string(), 0, text);
@@ -335,7 +336,6 @@ MoveMeshRun::MoveMeshRun(MoveMeshOptions options, std::ostream& out, std::ostrea
 
     // Before the solver assembles anything: does the solve fit in the memory there is?
     computeNodeClasses();
-    MeshTopology topology = buildMeshTopology(mesh_);
     checkMemory(topology);
 
     solver_ = motion::builtinMotionSolvers().create(mesh_, dynamicMeshDict_, &pointDisplacementDictionary_,

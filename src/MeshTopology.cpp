@@ -139,6 +139,13 @@ void appendOutwardFace(const PolyMesh& mesh, Label face, Label cell, std::vector
 
 std::vector<std::string> checkPolyMeshOrdering(const PolyMesh& mesh, const TopologyCheckOptions& options)
 {
+    MeshTopology topology;
+    return checkPolyMeshOrdering(mesh, options, topology);
+}
+
+std::vector<std::string> checkPolyMeshOrdering(const PolyMesh& mesh, const TopologyCheckOptions& options,
+                                               MeshTopology& builtTopology)
+{
     std::vector<std::string> messages;
     std::size_t problemCount = 0;
     auto report = [&](std::string message) {
@@ -212,7 +219,8 @@ std::vector<std::string> checkPolyMeshOrdering(const PolyMesh& mesh, const Topol
     }
     if (problemCount > 0) return finish();   // the cell checks below assume sane faces
 
-    const MeshTopology topology = buildMeshTopology(mesh);
+    builtTopology = buildMeshTopology(mesh);
+    const MeshTopology& topology = builtTopology;
     std::vector<std::pair<Label, Label>> edges;   // directed edges of one cell, reused
     std::vector<Label> outward;
     for (Label c = 0; c < topology.cellCount; ++c) {

@@ -72,6 +72,11 @@ struct TopologyCheckOptions {
 // Every violation of the rules listed at the top of this file, one sentence each naming
 // the face, cell or patch; empty when the mesh is valid.
 std::vector<std::string> checkPolyMeshOrdering(const PolyMesh& mesh, const TopologyCheckOptions& options = {});
+// The same; when the faces, their owners and the patches pass (the cells are checked on the
+// mesh's topology), `topology` receives that topology, buildMeshTopology(mesh), for the caller
+// to keep; otherwise it is left as it was.
+std::vector<std::string> checkPolyMeshOrdering(const PolyMesh& mesh, const TopologyCheckOptions& options,
+                                               MeshTopology& topology);
 
 // Throws rbm::InputError(file, 0, ...) listing the problems checkPolyMeshOrdering finds.
 void validateTopology(const PolyMesh& mesh, const std::string& file = {}, const TopologyCheckOptions& options = {});

@@ -244,6 +244,34 @@ TEST(PolyMeshOrdering, AllFacesReversedGiveNegativeVolumes)
     EXPECT_TRUE(checkPolyMeshOrdering(mesh, {.checkCellVolumes = false}).empty());
 }
 
+TEST(PolyMeshOrdering, TheCheckHandsOverTheTopologyItBuilt)
+{
+    // A valid 3 x 2 x 2 box: no problem, and the topology of its 12 cells (6 faces, 8 points
+    // each; corner point 0 in cell 0 only).
+    const PolyMesh mesh = makeHexBox(3, 2, 2, {0, 0, 0}, {3, 2, 2});
+    MeshTopology topology;
+    EXPECT_TRUE(checkPolyMeshOrdering(mesh, {}, topology).empty());
+    EXPECT_EQ(topology.cellCount, 12);
+    EXPECT_EQ(topology.pointCount, 4 * 3 * 3);
+    for (Label c = 0; c < topology.cellCount; ++c) {
+        EXPECT_EQ(topology.facesOf(c).size(), 6u);
+        EXPECT_EQ(topology.pointsOf(c).size(), 8u);
+    }
+    EXPECT_EQ(std::vector<Label>(topology.cellsOf(0).begin(), topology.cellsOf(0).end()), std::vector<Label>{0});
+    const MeshTopology built = buildMeshTopology(mesh);
+    EXPECT_EQ(topology.cellFaces, built.cellFaces);
+    EXPECT_EQ(topology.cellPoints, built.cellPoints);
+    EXPECT_EQ(topology.pointCells, built.pointCells);
+
+    // Faces that break the rules: the problems, and the topology left alone.
+    PolyMesh broken = mesh;
+    std::swap(broken.owner[0], broken.neighbour[0]);
+    MeshTopology untouched;
+    EXPECT_FALSE(checkPolyMeshOrdering(broken, {}, untouched).empty());
+    EXPECT_EQ(untouched.cellCount, 0);
+    EXPECT_TRUE(untouched.cellFaces.empty());
+}
+
 TEST(PolyMeshOrdering, PatchesMustBeContiguousAndCoverTheBoundary)
 {
     PolyMesh mesh = makeHexBox(1, 1, 1, {0, 0, 0}, {1, 1, 1});
