@@ -126,8 +126,11 @@ void writeGzip(const fs::path& target, std::string_view contents, std::size_t on
         libdeflate_gzip_compress(compressor, contents.data(), contents.size(), buffer.data(), buffer.size());
     libdeflate_free_compressor(compressor);
     if (size == 0) throw std::runtime_error("libdeflate failed to compress " + target.string());
+    // To the file in pieces, as the stream below goes (and as gzwrite did).
     OutputFile out(target);
-    out.write(std::string_view(buffer.data(), size));
+    constexpr std::size_t piece = std::size_t{1} << 17;
+    for (std::size_t offset = 0; offset < size; offset += piece)
+        out.write(std::string_view(buffer.data() + offset, std::min(piece, size - offset)));
     out.close();
 }
 

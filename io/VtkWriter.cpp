@@ -1,19 +1,11 @@
 #include "VtkWriter.hpp"
 
 #include "CellShape.hpp"
-#include "VtkMessageCapture.hpp"
+#include "vtk/VtuBytes.hpp"
 #include "WholeFile.hpp"
 
-#include <vtkCellArray.h>
-#include <vtkCellData.h>
-#include <vtkDoubleArray.h>
-#include <vtkIdTypeArray.h>
-#include <vtkNew.h>
-#include <vtkPointData.h>
-#include <vtkPoints.h>
-#include <vtkUnsignedCharArray.h>
-#include <vtkUnstructuredGrid.h>
-#include <vtkXMLUnstructuredGridWriter.h>
+
+#include <dlfcn.h>
 
 #include <algorithm>
 #include <iomanip>
@@ -24,25 +16,6 @@
 namespace rbm::io {
 
 namespace fs = std::filesystem;
-
-namespace {
-
-vtkNew<vtkDoubleArray> makeArray(const VtkField& field, std::size_t expectedTuples, const char* where)
-{
-    if (field.components < 1 || field.values.size() != expectedTuples * static_cast<std::size_t>(field.components)) {
-        throw std::runtime_error("VTK " + std::string(where) + " field '" + field.name + "' has " +
-                                 std::to_string(field.values.size()) + " values; expected " +
-                                 std::to_string(expectedTuples) + " x " + std::to_string(field.components));
-    }
-    vtkNew<vtkDoubleArray> array;
-    array->SetName(field.name.c_str());
-    array->SetNumberOfComponents(field.components);
-    array->SetNumberOfTuples(static_cast<vtkIdType>(expectedTuples));
-    std::copy(field.values.begin(), field.values.end(), array->GetPointer(0));
-    return array;
-}
-
-} // namespace
 
 VtkCells vtkCellsOf(const PolyMesh& mesh, const MeshTopology& topology)
 {
@@ -60,54 +33,52 @@ VtkCells vtkCellsOf(const PolyMesh& mesh, const MeshTopology& topology)
     return cells;
 }
 
+namespace {
+
+// The VTK module, opened at the first .vtu (VtuBytes.hpp). RBM_VTK_MODULE is its path in the
+// build tree; beside it, <program folder>/../lib/librbm_vtk.so is tried.
+using VtuBytesFunction = bool (*)(VtuRequest*);
+
+VtuBytesFunction loadVtkModule()
+{
+    static const VtuBytesFunction function = []() -> VtuBytesFunction {
+        std::vector<std::string> candidates;
+#ifdef RBM_VTK_MODULE
+        candidates.emplace_back(RBM_VTK_MODULE);
+#endif
+        std::error_code error;
+        const fs::path self = fs::read_symlink("/proc/self/exe", error);
+        if (!error) candidates.push_back((self.parent_path() / ".." / "lib" / "librbm_vtk.so").string());
+        std::string reasons;
+        for (const std::string& candidate : candidates) {
+            if (void* module = dlopen(candidate.c_str(), RTLD_NOW | RTLD_LOCAL)) {
+                if (void* symbol = dlsym(module, "rbmVtuBytes")) return reinterpret_cast<VtuBytesFunction>(symbol);
+            }
+            const char* reason = dlerror();
+            reasons += (reasons.empty() ? "" : "; ") + std::string(reason ? reason : candidate + ": no rbmVtuBytes");
+        }
+        throw std::runtime_error("cannot load rbm's VTK writer librbm_vtk.so (" +
+                                 (reasons.empty() ? std::string("no candidate") : reasons) + ")");
+    }();
+    return function;
+}
+
+} // namespace
+
 void writeVtu(const fs::path& file, const std::vector<Vector3>& points, const VtkCells& cells,
               const std::vector<VtkField>& pointFields, const std::vector<VtkField>& cellFields)
 {
-    vtkNew<vtkPoints> vtkPointSet;
-    vtkPointSet->SetDataTypeToDouble();
-    vtkPointSet->SetNumberOfPoints(static_cast<vtkIdType>(points.size()));
-    for (std::size_t i = 0; i < points.size(); ++i) {
-        vtkPointSet->SetPoint(static_cast<vtkIdType>(i), points[i].x, points[i].y, points[i].z);
-    }
-
-    vtkNew<vtkUnstructuredGrid> grid;
-    grid->SetPoints(vtkPointSet);
-    grid->Allocate(cells.cellCount());
-    std::vector<vtkIdType> ids;
-    std::vector<vtkIdType> faceIds;
-    for (Label c = 0; c < cells.cellCount(); ++c) {
-        ids.assign(cells.connectivity.begin() + cells.offsets[c], cells.connectivity.begin() + cells.offsets[c + 1]);
-        const Label faceBegin = cells.faceStreamOffsets.size() > static_cast<std::size_t>(c + 1) ? cells.faceStreamOffsets[c] : 0;
-        const Label faceEnd = cells.faceStreamOffsets.size() > static_cast<std::size_t>(c + 1) ? cells.faceStreamOffsets[c + 1] : 0;
-        if (faceEnd > faceBegin) {
-            faceIds.assign(cells.faceStream.begin() + faceBegin + 1, cells.faceStream.begin() + faceEnd);
-            grid->InsertNextCell(cells.types[c], static_cast<vtkIdType>(ids.size()), ids.data(),
-                                 static_cast<vtkIdType>(cells.faceStream[faceBegin]), faceIds.data());
-        } else {
-            grid->InsertNextCell(cells.types[c], static_cast<vtkIdType>(ids.size()), ids.data());
-        }
-    }
-    for (const VtkField& field : pointFields) grid->GetPointData()->AddArray(makeArray(field, points.size(), "point"));
-    for (const VtkField& field : cellFields) {
-        grid->GetCellData()->AddArray(makeArray(field, static_cast<std::size_t>(cells.cellCount()), "cell"));
-    }
-
     // VTK writes into memory, and the bytes go to the file through replaceFileAtomically:
     // a temporary file renamed over the old one, so a reader never sees half a file, a failure
     // (a full disk) leaves the old file and no temporary, and the message names the file and
-    // the OS reason. VTK's own messages, if any, become one line of the error.
-    VtkMessageCapture capture;
-    vtkNew<vtkXMLUnstructuredGridWriter> writer;
-    writer->WriteToOutputStringOn();
-    writer->SetInputData(grid);
-    writer->SetDataModeToAppended();
-    writer->SetCompressorTypeToZLib();
-    // zlib's fastest level, as for the .gz files (CompressedFile.cpp); VTK's default is 5.
-    writer->SetCompressionLevel(1);
-    if (writer->Write() != 1 || capture.hasErrors()) {
-        throw std::runtime_error("VTK could not write " + file.string() + ": " + capture.summary());
-    }
-    replaceFileAtomically(file, writer->GetOutputString());
+    // the OS reason.
+    VtuRequest request;
+    request.points = &points;
+    request.cells = &cells;
+    request.pointFields = &pointFields;
+    request.cellFields = &cellFields;
+    if (!loadVtkModule()(&request)) throw std::runtime_error("VTK could not write " + file.string() + ": " + request.error);
+    replaceFileAtomically(file, request.bytes);
 }
 
 PvdCollection::PvdCollection(fs::path file) : file_(std::move(file)) {}

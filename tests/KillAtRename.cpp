@@ -9,6 +9,11 @@
 //   RBM_KILL_RENAME_LOG     file to which every counted rename appends "N source -> target"
 // rename, renameat and renameat2 are intercepted (std::filesystem::rename calls rename;
 // TimeFolderWriter calls renameat2 for RENAME_EXCHANGE).
+//
+// And, to stop it while a file is half written:
+//   RBM_KILL_WRITE_MATCH    kill at the second write() to a file in a staging folder (path
+//                           contains ".tmp-") whose path ends with this text, before it writes:
+//                           the file then holds its first piece only. Unset: write() passes.
 
 #include <dlfcn.h>
 #include <fcntl.h>
@@ -65,9 +70,39 @@ Function next(const char* name)
     return reinterpret_cast<Function>(::dlsym(RTLD_NEXT, name));
 }
 
+// Whether this write() is the second to a staged file matching RBM_KILL_WRITE_MATCH.
+bool secondWriteToMatchingFile(int fd)
+{
+    static const char* match = std::getenv("RBM_KILL_WRITE_MATCH");
+    if (!match || !*match) return false;
+    static std::atomic<int> lastFd{-1};
+    char link[64];
+    char path[4096];
+    std::snprintf(link, sizeof link, "/proc/self/fd/%d", fd);
+    const ssize_t length = ::readlink(link, path, sizeof path - 1);
+    if (length <= 0) return false;
+    path[length] = '\0';
+    const std::size_t matchLength = std::strlen(match);
+    if (!std::strstr(path, ".tmp-") || static_cast<std::size_t>(length) < matchLength ||
+        std::strcmp(path + length - matchLength, match) != 0)
+        return false;
+    return lastFd.exchange(fd) == fd;   // the same file written before
+}
+
 } // namespace
 
 extern "C" {
+
+ssize_t write(int fd, const void* data, size_t size)
+{
+    using Write = ssize_t (*)(int, const void*, size_t);
+    static const Write real = next<Write>("write");
+    if (secondWriteToMatchingFile(fd)) {
+        ::kill(::getpid(), SIGKILL);
+        ::pause();
+    }
+    return real(fd, data, size);
+}
 
 int rename(const char* from, const char* to) noexcept   // glibc declares them __THROW
 {
