@@ -531,6 +531,30 @@ TEST(ReducedNewton, MovesTheWholeMeshRigidlyWhenTheBoundaryMovesRigidly)
     }
 }
 
+TEST(ReducedNewton, OwnFactorisationAndPetscsAgree)
+{
+    // K factorised by rbm (SparseCholesky, the default on one rank) or, when the user names the
+    // package, through PETSc's KSP: the same minimum to rounding.
+    const GridCase c = gridCase(2, 12, false, 17);
+    const std::vector<Vector3> prescribed = largeTopMotion(c);
+    ReducedNewtonSolver own(*c.problem);
+    const RbmResult expected = own.solve(prescribed);
+    ASSERT_TRUE(expected.converged) << expected.reason;
+    ASSERT_EQ(PetscOptionsSetValue(nullptr, "-rbm_reduced_pc_factor_mat_solver_type", "petsc"), 0);
+    RbmResult result;
+    {
+        ReducedNewtonSolver throughPetsc(*c.problem);
+        result = throughPetsc.solve(prescribed);
+    }
+    ASSERT_EQ(PetscOptionsClearValue(nullptr, "-rbm_reduced_pc_factor_mat_solver_type"), 0);
+    ASSERT_TRUE(result.converged) << result.reason;
+    EXPECT_GT(expected.energy, 1e-3);
+    EXPECT_NEAR(result.energy, expected.energy, 1e-10 * expected.energy);
+    EXPECT_LT(largestDifference(result.displacement, expected.displacement), 1e-9);
+    // Two different factorisations do not round alike: the option did switch the path.
+    EXPECT_NE(result.displacement, expected.displacement);
+}
+
 TEST(ReducedNewton, DisplacementToleranceStopsEarlyWithinItsBound)
 {
     // displacementTolerance ε: converged once |K⁻¹∇Ẽ| ≤ ε × the shortest edge at every node.
