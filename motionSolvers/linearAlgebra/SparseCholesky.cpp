@@ -61,13 +61,14 @@ private:
 #endif
 
 SparseCholesky::SparseCholesky(int n, std::span<const int> rowOffsets, std::span<const int> columns,
-                               std::span<const double> values)
-    : size_(n)
+                               std::span<const double> values, FactorPrecision precision)
+    : size_(n), precision_(precision)
 {
 #if !defined(RBM_HAVE_CHOLMOD)
     (void)rowOffsets;
     (void)columns;
     (void)values;
+    (void)precision;
     throw std::runtime_error("sparse Cholesky: this build has no CHOLMOD (install libsuitesparse-dev and rebuild)");
 #else
     if (n < 0 || rowOffsets.size() != static_cast<std::size_t>(n) + 1 || columns.size() != values.size() ||
@@ -101,6 +102,9 @@ SparseCholesky::SparseCholesky(int n, std::span<const int> rowOffsets, std::span
     }
     start[n] = static_cast<int>(next);
 
+    // Always supernodal, so that there is one layout to copy (a small matrix CHOLMOD would
+    // factorise simplicially costs a few microseconds either way).
+    session.common()->supernodal = CHOLMOD_SUPERNODAL;
     session.factor_ = cholmod_analyze(session.matrix_, session.common());
     session.check("ordering (cholmod_analyze)");
     cholmod_factorize(session.matrix_, session.factor_, session.common());
@@ -108,113 +112,165 @@ SparseCholesky::SparseCholesky(int n, std::span<const int> rowOffsets, std::span
     if (session.common()->status == CHOLMOD_NOT_POSDEF || session.factor_->minor < static_cast<std::size_t>(n))
         throw std::runtime_error("sparse Cholesky: the matrix is not positive definite (column " +
                                  std::to_string(session.factor_->minor) + ")");
-    // The supernodal factor pads its supernodes with explicit zeros (relaxed amalgamation: 25 %
-    // of the entries of the airfoil's factor); the solve need not read them. Its columns are
-    // copied straight into compressed columns (CHOLMOD's own conversion to a simplicial factor
-    // would allocate and fill a third copy of L: 0.8 GB and a quarter of the set-up at 10⁶
-    // 2D nodes). A small matrix factorised simplicially (L D Lᵀ) is converted to L Lᵀ first.
-    if (!session.factor_->is_super) {
-        cholmod_change_factor(CHOLMOD_REAL, 1, 0, 1, 1, session.factor_, session.common());
-        session.check("converting the factor (cholmod_change_factor)");
-    }
     const cholmod_factor& factor = *session.factor_;
+    if (!factor.is_super)
+        throw std::runtime_error("sparse Cholesky: CHOLMOD returned a simplicial factor where a supernodal one was asked for");
     const auto* permutation = static_cast<const int*>(factor.Perm);
-    columnStart_.assign(n + 1, 0);
-    rowIndex_.clear();
-    value_.clear();
-    auto keep = [&](int row, double value, bool diagonal) {
-        if (value != 0.0 || diagonal) {
-            rowIndex_.push_back(row);
-            value_.push_back(value);
+    const auto* super = static_cast<const int*>(factor.super);
+    const auto* rowPointer = static_cast<const int*>(factor.pi);
+    const auto* valuePointer = static_cast<const int*>(factor.px);
+    const auto* rows = static_cast<const int*>(factor.s);
+    const auto* factorValues = static_cast<const double*>(factor.x);
+    const std::size_t supernodes = factor.nsuper;
+    supernodeStart_.assign(super, super + supernodes + 1);
+    belowStart_.assign(supernodes + 1, 0);
+    valueStart_.assign(supernodes + 1, 0);
+    std::size_t belowTotal = 0, valueTotal = 0;
+    for (std::size_t supernode = 0; supernode < supernodes; ++supernode) {
+        const std::size_t width = static_cast<std::size_t>(super[supernode + 1] - super[supernode]);
+        const std::size_t below = static_cast<std::size_t>(rowPointer[supernode + 1] - rowPointer[supernode]) - width;
+        belowTotal += below;
+        valueTotal += width * (width + 1) / 2 + below * width;
+        belowStart_[supernode + 1] = static_cast<int>(belowTotal);
+        valueStart_[supernode + 1] = valueTotal;
+    }
+    belowRow_.resize(belowTotal);
+    value_.resize(valueTotal);
+    for (std::size_t supernode = 0; supernode < supernodes; ++supernode) {
+        const int first = super[supernode];
+        const int width = super[supernode + 1] - first;
+        const int rowCount = rowPointer[supernode + 1] - rowPointer[supernode];
+        const int* rowList = rows + rowPointer[supernode];
+        // CHOLMOD's block: column-major, rowCount rows, its first `width` rows the supernode's
+        // own columns.
+        const double* block = factorValues + valuePointer[supernode];
+        auto entry = [&](int row, int column) { return block[static_cast<std::size_t>(column) * rowCount + row]; };
+        double* out = value_.data() + valueStart_[supernode];
+        for (int r = 0; r < width; ++r) {
+            if (rowList[r] != first + r)
+                throw std::runtime_error("sparse Cholesky: unexpected factor layout in supernode " + std::to_string(supernode));
+            for (int c = 0; c < r; ++c) *out++ = entry(r, c);
+            const double diagonal = entry(r, r);
+            if (!(diagonal > 0.0))
+                throw std::runtime_error("sparse Cholesky: the matrix is not positive definite (column " +
+                                         std::to_string(first + r) + " of the factor)");
+            *out++ = 1.0 / diagonal;
         }
-    };
-    if (factor.is_super) {
-        const auto* super = static_cast<const int*>(factor.super);
-        const auto* rowPointer = static_cast<const int*>(factor.pi);
-        const auto* valuePointer = static_cast<const int*>(factor.px);
-        const auto* rows = static_cast<const int*>(factor.s);
-        const auto* values = static_cast<const double*>(factor.x);
-        const std::size_t estimate = static_cast<std::size_t>(session.common()->lnz);
-        rowIndex_.reserve(estimate);
-        value_.reserve(estimate);
-        for (std::size_t supernode = 0; supernode < factor.nsuper; ++supernode) {
-            const int k1 = super[supernode], k2 = super[supernode + 1];
-            const int rowCount = rowPointer[supernode + 1] - rowPointer[supernode];
-            // Column k1 + c: the rows from c on (its diagonal first), column-major in the block.
-            for (int c = 0; c < k2 - k1; ++c) {
-                const double* column = values + valuePointer[supernode] + static_cast<std::size_t>(c) * rowCount;
-                for (int r = c; r < rowCount; ++r) keep(rows[rowPointer[supernode] + r], column[r], r == c);
-                columnStart_[k1 + c + 1] = static_cast<int>(rowIndex_.size());
-            }
-        }
-    } else {
-        const auto* factorStart = static_cast<const int*>(factor.p);
-        const auto* factorIndex = static_cast<const int*>(factor.i);
-        const auto* factorValue = static_cast<const double*>(factor.x);
-        rowIndex_.reserve(n > 0 ? static_cast<std::size_t>(factorStart[n]) : 0);
-        value_.reserve(rowIndex_.capacity());
-        for (int j = 0; j < n; ++j) {
-            for (int p = factorStart[j]; p < factorStart[j + 1]; ++p) keep(factorIndex[p], factorValue[p], p == factorStart[j]);
-            columnStart_[j + 1] = static_cast<int>(rowIndex_.size());
+        int* belowOut = belowRow_.data() + belowStart_[supernode];
+        for (int r = width; r < rowCount; ++r) {
+            *belowOut++ = rowList[r];
+            for (int c = 0; c < width; ++c) *out++ = entry(r, c);
         }
     }
     permutation_.assign(permutation, permutation + n);
-    // A small matrix may be factorised simplicially as L D Lᵀ, which does not fail on an
-    // indefinite matrix; its L Lᵀ form then has a diagonal entry that is not positive.
-    for (int j = 0; j < n; ++j) {
-        if (columnStart_[j] >= columnStart_[j + 1] || rowIndex_[columnStart_[j]] != j)
-            throw std::runtime_error("sparse Cholesky: unexpected factor layout in column " + std::to_string(j));
-        if (!(value_[columnStart_[j]] > 0.0))
-            throw std::runtime_error("sparse Cholesky: the matrix is not positive definite (column " +
-                                     std::to_string(j) + " of the factor)");
+    if (precision_ == FactorPrecision::single) {
+        singleValue_.assign(value_.begin(), value_.end());
+        std::vector<double>().swap(value_);
     }
 #endif
 }
+
+namespace {
+
+// Σ_c a[c] b[c] in four interleaved partial sums (independent chains the CPU overlaps); the
+// order is fixed, so the result does not depend on anything but a and b.
+template <typename Entry>
+inline double dotProduct(const Entry* a, const double* b, int count)
+{
+    double sum0 = 0.0, sum1 = 0.0, sum2 = 0.0, sum3 = 0.0;
+    int c = 0;
+    for (; c + 4 <= count; c += 4) {
+        sum0 += a[c] * b[c];
+        sum1 += a[c + 1] * b[c + 1];
+        sum2 += a[c + 2] * b[c + 2];
+        sum3 += a[c + 3] * b[c + 3];
+    }
+    for (; c < count; ++c) sum0 += a[c] * b[c];
+    return (sum0 + sum1) + (sum2 + sum3);
+}
+
+} // namespace
 
 void SparseCholesky::solve(std::span<const double> b, std::span<double> x, int count) const
 {
     const std::size_t total = static_cast<std::size_t>(size_) * count;
     if (count < 1 || count > 3 || b.size() != total || x.size() != total)
         throw std::invalid_argument("sparse Cholesky: solve with vectors of the wrong size");
-    work_.resize(total);
+    int widest = 0;
+    for (std::size_t s = 0; s + 1 < supernodeStart_.size(); ++s)
+        widest = std::max(widest, supernodeStart_[s + 1] - supernodeStart_[s]);
+    // y (permuted, interleaved), then per supernode its columns' values deinterleaved.
+    work_.resize(total + static_cast<std::size_t>(widest) * count);
     double* y = work_.data();
+    double* local = y + total;
     for (int k = 0; k < size_; ++k)
         for (int c = 0; c < count; ++c) y[static_cast<std::size_t>(k) * count + c] = b[static_cast<std::size_t>(permutation_[k]) * count + c];
-    const int* start = columnStart_.data();
-    const int* index = rowIndex_.data();
-    const double* value = value_.data();
-    auto sweep = [&](auto components) {
+    const int supernodes = supernodeCount();
+    auto sweep = [&](auto components, const auto* values) {
         constexpr int dim = decltype(components)::value;
-        // L y = P b, column by column (scatter).
-        for (int j = 0; j < size_; ++j) {
-            double* yj = y + static_cast<std::size_t>(j) * dim;
-            const double inverse = 1.0 / value[start[j]];
-            double v[dim];
-            for (int c = 0; c < dim; ++c) v[c] = yj[c] *= inverse;
-            for (int p = start[j] + 1; p < start[j + 1]; ++p) {
-                double* yi = y + static_cast<std::size_t>(index[p]) * dim;
-                for (int c = 0; c < dim; ++c) yi[c] -= value[p] * v[c];
+        // L y = P b, supernode by supernode.
+        for (int s = 0; s < supernodes; ++s) {
+            const int first = supernodeStart_[s], width = supernodeStart_[s + 1] - first;
+            const auto* entry = values + valueStart_[s];
+            for (int r = 0; r < width; ++r)
+                for (int q = 0; q < dim; ++q) local[q * width + r] = y[static_cast<std::size_t>(first + r) * dim + q];
+            // The diagonal block: forward substitution, row by row.
+            for (int r = 0; r < width; ++r) {
+                for (int q = 0; q < dim; ++q) {
+                    double* v = local + q * width;
+                    v[r] = (v[r] - dotProduct(entry, v, r)) * entry[r];
+                }
+                entry += r + 1;
+            }
+            for (int r = 0; r < width; ++r)
+                for (int q = 0; q < dim; ++q) y[static_cast<std::size_t>(first + r) * dim + q] = local[q * width + r];
+            // The rows below: one dot product per row and component.
+            for (int t = belowStart_[s]; t < belowStart_[s + 1]; ++t, entry += width) {
+                double* yi = y + static_cast<std::size_t>(belowRow_[t]) * dim;
+                for (int q = 0; q < dim; ++q) yi[q] -= dotProduct(entry, local + q * width, width);
             }
         }
-        // Lᵀ z = y, backwards (gather).
-        for (int j = size_ - 1; j >= 0; --j) {
-            double v[dim];
-            double* yj = y + static_cast<std::size_t>(j) * dim;
-            for (int c = 0; c < dim; ++c) v[c] = yj[c];
-            for (int p = start[j] + 1; p < start[j + 1]; ++p) {
-                const double* yi = y + static_cast<std::size_t>(index[p]) * dim;
-                for (int c = 0; c < dim; ++c) v[c] -= value[p] * yi[c];
+        // Lᵀ z = y, supernodes backwards.
+        for (int s = supernodes - 1; s >= 0; --s) {
+            const int first = supernodeStart_[s], width = supernodeStart_[s + 1] - first;
+            for (int r = 0; r < width; ++r)
+                for (int q = 0; q < dim; ++q) local[q * width + r] = y[static_cast<std::size_t>(first + r) * dim + q];
+            // The rows below: an axpy into the supernode's columns per row.
+            const auto* below = values + valueStart_[s] + static_cast<std::size_t>(width) * (width + 1) / 2;
+            for (int t = belowStart_[s]; t < belowStart_[s + 1]; ++t, below += width) {
+                const double* yi = y + static_cast<std::size_t>(belowRow_[t]) * dim;
+                for (int q = 0; q < dim; ++q) {
+                    const double factor = yi[q];
+                    double* v = local + q * width;
+                    for (int c = 0; c < width; ++c) v[c] -= below[c] * factor;
+                }
             }
-            const double inverse = 1.0 / value[start[j]];
-            for (int c = 0; c < dim; ++c) yj[c] = v[c] * inverse;
+            // The diagonal block transposed: back substitution, rows from the last, each row's
+            // entries subtracted from the columns before it once its value is known.
+            const auto* diagonalBlock = values + valueStart_[s];
+            for (int r = width - 1; r >= 0; --r) {
+                const auto* row = diagonalBlock + static_cast<std::size_t>(r) * (r + 1) / 2;
+                for (int q = 0; q < dim; ++q) {
+                    double* v = local + q * width;
+                    v[r] *= row[r];
+                    const double known = v[r];
+                    for (int c = 0; c < r; ++c) v[c] -= row[c] * known;
+                }
+            }
+            for (int r = 0; r < width; ++r)
+                for (int q = 0; q < dim; ++q) y[static_cast<std::size_t>(first + r) * dim + q] = local[q * width + r];
         }
     };
-    switch (count) {
-    case 1: sweep(std::integral_constant<int, 1>{}); break;
-    case 2: sweep(std::integral_constant<int, 2>{}); break;
-    case 3: sweep(std::integral_constant<int, 3>{}); break;
-    default: break;
-    }
+    auto sweepAll = [&](const auto* values) {
+        switch (count) {
+        case 1: sweep(std::integral_constant<int, 1>{}, values); break;
+        case 2: sweep(std::integral_constant<int, 2>{}, values); break;
+        case 3: sweep(std::integral_constant<int, 3>{}, values); break;
+        default: break;
+        }
+    };
+    if (precision_ == FactorPrecision::single) sweepAll(singleValue_.data());
+    else sweepAll(value_.data());
     for (int k = 0; k < size_; ++k)
         for (int c = 0; c < count; ++c) x[static_cast<std::size_t>(permutation_[k]) * count + c] = y[static_cast<std::size_t>(k) * count + c];
 }

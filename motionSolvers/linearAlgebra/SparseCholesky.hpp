@@ -3,18 +3,21 @@
 // once and then applied many times to a few right-hand sides at once (issue 12: the reduced
 // Newton solver applies K⁻¹ of the constant weighted Laplacian 10–40 times per time step).
 //
-// Why not PETSc's MatMatSolve on its CHOLMOD factor: CHOLMOD keeps the factor supernodal, and
-// its supernodal back-substitution calls BLAS (dtrsm/dgemm) once per supernode. A 2D mesh
-// Laplacian has tens of thousands of supernodes of a few columns, so with 2–3 right-hand sides
-// the BLAS calls' set-up, not the flops, dominates (perf on the 40k-node airfoil: 34 % of a
-// pitching run in cholmod_super_*solve, most of it in OpenBLAS copy routines). Here CHOLMOD
-// orders (AMD / METIS, its own choice of the best) and factorises supernodally (fast); the
-// factor's columns are then copied into a plain compressed-column L without the supernodes'
-// zero padding, and the triangular solves run as two tight loops over its entries with the
-// right-hand sides interleaved (all components of a node side by side), so every entry of L is
-// read once per solve for all components. (A supernodal sweep of rbm's own was measured
-// slower: it reads the padding and the diagonal blocks' upper halves.)
-//
+// Why not PETSc's MatMatSolve on its CHOLMOD factor: CHOLMOD's supernodal back-substitution
+// calls BLAS (dtrsm/dgemm) once per supernode. A 2D mesh Laplacian has thousands of supernodes
+// of a few to a few dozen columns, so with 2–3 right-hand sides the BLAS calls' set-up, not the
+// flops, dominates (perf on the 40k-node airfoil: 34 % of a pitching run in
+// cholmod_super_*solve, most of it in OpenBLAS copy routines). Here CHOLMOD orders (AMD / METIS,
+// its own choice of the best) and factorises supernodally (fast); rbm then keeps each
+// supernode as a packed lower-triangular diagonal block and a ROW-major block of the rows below
+// it, with one row list per supernode, and sweeps them itself: per row below a supernode one
+// gather (forward: a dot product over the supernode's columns) or one scatter-free read
+// (backward: an axpy into the supernode's columns), contiguous in memory, instead of one
+// indirect load and store per entry of L. On the airfoil 97 % of L's entries sit in supernodes
+// of 8 columns or more. The right-hand sides are interleaved (all components of a node side by
+// side) in the caller's vectors and deinterleaved per supernode, so every entry of L is read
+// once per solve for all components.
+
 // Built only where CHOLMOD's header was found (RBM_HAVE_CHOLMOD; Debian: libsuitesparse-dev,
 // which petsc-dev depends on). Sequential: one process's matrix.
 
@@ -24,16 +27,28 @@
 
 namespace rbm::motion {
 
+// How the factor's entries are kept. The sweeps stream every entry of L from memory once per
+// solve and are bound by that traffic (perf: the loads of L's entries are the hot
+// instructions), so single precision halves a solve's time. The arithmetic stays in double;
+// each entry is then off by at most 2⁻²⁴ relatively, i.e. the factor of a matrix within that
+// relative distance of A entrywise: a preconditioner as good as the exact one (reduced Newton
+// takes the same CG iterations), not an exact inverse.
+enum class FactorPrecision { double_, single };
+
 class SparseCholesky {
 public:
     // The matrix in compressed sparse rows over n rows, both triangles given (only the upper
     // triangle, column ≥ row, is read), any column order. Throws std::runtime_error naming the
     // failing step if CHOLMOD reports an error or the matrix is not positive definite.
-    SparseCholesky(int n, std::span<const int> rowOffsets, std::span<const int> columns, std::span<const double> values);
+    SparseCholesky(int n, std::span<const int> rowOffsets, std::span<const int> columns, std::span<const double> values,
+                   FactorPrecision precision = FactorPrecision::double_);
 
     int size() const { return size_; }
-    // Entries of L (diagonal included): the solve reads each once per sweep.
-    std::size_t factorNonzeros() const { return rowIndex_.size(); }
+    // Entries of L as stored (diagonal included, the supernodes' explicit zeros too): the solve
+    // reads each once per sweep.
+    std::size_t factorNonzeros() const { return valueStart_.empty() ? 0 : valueStart_.back(); }
+    FactorPrecision precision() const { return precision_; }
+    int supernodeCount() const { return static_cast<int>(supernodeStart_.size()) - 1; }
 
     // X = A⁻¹ B for `count` (1 to 3) right-hand sides stored interleaved: B[k * count + c] is row k of
     // right-hand side c. b and x may be the same array.
@@ -45,9 +60,17 @@ public:
 private:
     int size_ = 0;
     std::vector<int> permutation_;    // row k of the factored matrix is row permutation_[k] of A
-    std::vector<int> columnStart_;    // L in compressed columns, the diagonal first in each column
-    std::vector<int> rowIndex_;
-    std::vector<double> value_;
+    // Supernode s holds the columns [supernodeStart_[s], supernodeStart_[s + 1]) of L (width w).
+    // Its entries, from valueStart_[s] on: the w × w diagonal block's lower triangle, packed
+    // by rows with each diagonal entry stored as its reciprocal, then the block of the rows
+    // below it, row-major (belowRow_[belowStart_[s] + t] is row t's index in L), w per row.
+    std::vector<int> supernodeStart_;
+    std::vector<int> belowStart_;
+    std::vector<int> belowRow_;
+    std::vector<std::size_t> valueStart_;
+    std::vector<double> value_;        // FactorPrecision::double_
+    std::vector<float> singleValue_;   // FactorPrecision::single
+    FactorPrecision precision_ = FactorPrecision::double_;
     mutable std::vector<double> work_;
 };
 
