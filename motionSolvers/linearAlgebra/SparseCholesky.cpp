@@ -172,21 +172,38 @@ SparseCholesky::SparseCholesky(int n, std::span<const int> rowOffsets, std::span
 
 namespace {
 
-// Σ_c a[c] b[c] in four interleaved partial sums (independent chains the CPU overlaps); the
-// order is fixed, so the result does not depend on anything but a and b.
-template <typename Entry>
-inline double dotProduct(const Entry* a, const double* b, int count)
+// For every component q < dim: out[q] = Σ_c a[c] b[q·stride + c], in four interleaved partial
+// sums (independent chains the CPU overlaps) and all components in one pass over a. The order
+// of each component's sum is fixed: its result does not depend on dim.
+template <int dim, typename Entry>
+inline void dotProducts(const Entry* __restrict a, const double* __restrict b, std::size_t stride, int count, double* __restrict out)
 {
-    double sum0 = 0.0, sum1 = 0.0, sum2 = 0.0, sum3 = 0.0;
+    double sum[dim][4] = {};
     int c = 0;
     for (; c + 4 <= count; c += 4) {
-        sum0 += a[c] * b[c];
-        sum1 += a[c + 1] * b[c + 1];
-        sum2 += a[c + 2] * b[c + 2];
-        sum3 += a[c + 3] * b[c + 3];
+        const double a0 = a[c], a1 = a[c + 1], a2 = a[c + 2], a3 = a[c + 3];
+        for (int q = 0; q < dim; ++q) {
+            const double* bq = b + q * stride + c;
+            sum[q][0] += a0 * bq[0];
+            sum[q][1] += a1 * bq[1];
+            sum[q][2] += a2 * bq[2];
+            sum[q][3] += a3 * bq[3];
+        }
     }
-    for (; c < count; ++c) sum0 += a[c] * b[c];
-    return (sum0 + sum1) + (sum2 + sum3);
+    for (; c < count; ++c)
+        for (int q = 0; q < dim; ++q) sum[q][0] += a[c] * b[q * stride + c];
+    for (int q = 0; q < dim; ++q) out[q] = (sum[q][0] + sum[q][1]) + (sum[q][2] + sum[q][3]);
+}
+
+// For every component q < dim: b[q·stride + c] −= a[c] factor[q], c < count, in one pass over a.
+template <int dim, typename Entry>
+inline void subtractMultiples(const Entry* __restrict a, const double* __restrict factor, double* __restrict b, std::size_t stride,
+                              int count)
+{
+    for (int c = 0; c < count; ++c) {
+        const double entry = a[c];
+        for (int q = 0; q < dim; ++q) b[q * stride + c] -= entry * factor[q];
+    }
 }
 
 } // namespace
@@ -216,10 +233,9 @@ void SparseCholesky::solve(std::span<const double> b, std::span<double> x, int c
                 for (int q = 0; q < dim; ++q) local[q * width + r] = y[static_cast<std::size_t>(first + r) * dim + q];
             // The diagonal block: forward substitution, row by row.
             for (int r = 0; r < width; ++r) {
-                for (int q = 0; q < dim; ++q) {
-                    double* v = local + q * width;
-                    v[r] = (v[r] - dotProduct(entry, v, r)) * entry[r];
-                }
+                double sums[dim];
+                dotProducts<dim>(entry, local, width, r, sums);
+                for (int q = 0; q < dim; ++q) local[q * width + r] = (local[q * width + r] - sums[q]) * entry[r];
                 entry += r + 1;
             }
             for (int r = 0; r < width; ++r)
@@ -227,7 +243,9 @@ void SparseCholesky::solve(std::span<const double> b, std::span<double> x, int c
             // The rows below: one dot product per row and component.
             for (int t = belowStart_[s]; t < belowStart_[s + 1]; ++t, entry += width) {
                 double* yi = y + static_cast<std::size_t>(belowRow_[t]) * dim;
-                for (int q = 0; q < dim; ++q) yi[q] -= dotProduct(entry, local + q * width, width);
+                double sums[dim];
+                dotProducts<dim>(entry, local, width, width, sums);
+                for (int q = 0; q < dim; ++q) yi[q] -= sums[q];
             }
         }
         // Lᵀ z = y, supernodes backwards.
@@ -238,24 +256,16 @@ void SparseCholesky::solve(std::span<const double> b, std::span<double> x, int c
             // The rows below: an axpy into the supernode's columns per row.
             const auto* below = values + valueStart_[s] + static_cast<std::size_t>(width) * (width + 1) / 2;
             for (int t = belowStart_[s]; t < belowStart_[s + 1]; ++t, below += width) {
-                const double* yi = y + static_cast<std::size_t>(belowRow_[t]) * dim;
-                for (int q = 0; q < dim; ++q) {
-                    const double factor = yi[q];
-                    double* v = local + q * width;
-                    for (int c = 0; c < width; ++c) v[c] -= below[c] * factor;
-                }
+                subtractMultiples<dim>(below, y + static_cast<std::size_t>(belowRow_[t]) * dim, local, width, width);
             }
             // The diagonal block transposed: back substitution, rows from the last, each row's
             // entries subtracted from the columns before it once its value is known.
             const auto* diagonalBlock = values + valueStart_[s];
             for (int r = width - 1; r >= 0; --r) {
                 const auto* row = diagonalBlock + static_cast<std::size_t>(r) * (r + 1) / 2;
-                for (int q = 0; q < dim; ++q) {
-                    double* v = local + q * width;
-                    v[r] *= row[r];
-                    const double known = v[r];
-                    for (int c = 0; c < r; ++c) v[c] -= row[c] * known;
-                }
+                double known[dim];
+                for (int q = 0; q < dim; ++q) known[q] = local[q * width + r] *= row[r];
+                subtractMultiples<dim>(row, known, local, width, r);
             }
             for (int r = 0; r < width; ++r)
                 for (int q = 0; q < dim; ++q) y[static_cast<std::size_t>(first + r) * dim + q] = local[q * width + r];
