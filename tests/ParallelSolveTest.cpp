@@ -222,8 +222,10 @@ TEST(ParallelMoveMesh, PitchingAirfoilStepsMatchTheSerialRunAndOnlyRankZeroWrite
             const std::vector<Vector3> parallel = io::readPolyMeshPoints(parallelCase / time / "polyMesh" / "points.gz");
             const std::vector<Vector3> initial = io::readPolyMeshPoints(serialCase / "constant" / "polyMesh" / "points.gz");
             ASSERT_EQ(serial.size(), parallel.size());
-            // Written with 12 digits: equal to that, and far below 1e-8 of the smallest cell (~1e-3).
-            EXPECT_LT(largestDifference(serial, parallel), 1e-11) << time;
+            // Both runs stop within displacementTolerance (default 1e-6 of a node's shortest
+            // edge, the estimate at most 5× low; the smallest cell is ~1e-3), each from its own
+            // arithmetic (one rank: rbm's factorisation of K; two: PETSc's).
+            EXPECT_LT(largestDifference(serial, parallel), 5e-6 * 1e-3) << time;
             EXPECT_GT(largestDifference(serial, initial), 1e-3) << time;
         }
         // No stray output from the other rank: exactly the serial run's time folders.
