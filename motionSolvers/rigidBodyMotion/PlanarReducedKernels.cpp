@@ -28,18 +28,24 @@ PlanarReducedKernels::PlanarReducedKernels(const RbmProblem& problem)
                                 unknownIndex[j] >= 0 ? unknownIndex[j] : m};
         }
     }
-    const int zeroEdge = static_cast<int>(edges_.size());
-    transpose_.assign(edges_.size(), zeroEdge);
+    // S v below takes q_back of edge a→j from j's rotation and −d, which needs the graph to be
+    // symmetric: every unknown neighbour j of a has a among its neighbours.
     for (int a = 0; a < m; ++a)
         for (int position = offsets_[a]; position < offsets_[a + 1]; ++position) {
             const int b = edges_[position].compact;
             if (b == m) continue;
-            for (int back = offsets_[b]; back < offsets_[b + 1]; ++back)
-                if (edges_[back].compact == a) transpose_[position] = back;
-            if (transpose_[position] == zeroEdge)
-                throw std::invalid_argument("PlanarReducedKernels: the graph is not symmetric");
+            bool found = false;
+            for (int back = offsets_[b]; back < offsets_[b + 1] && !found; ++back) found = edges_[back].compact == a;
+            if (!found) throw std::invalid_argument("PlanarReducedKernels: the graph is not symmetric");
         }
-    rotated_.assign(2 * edges_.size() + 2, 0.0);
+    weightedRotated_.assign(2 * edges_.size(), 0.0);
+    weightedBackRotated_.assign(2 * edges_.size(), 0.0);
+    laplacianWeight_.resize(edges_.size());
+    compact_.resize(edges_.size());
+    for (std::size_t position = 0; position < edges_.size(); ++position) {
+        compact_[position] = edges_[position].compact;
+        laplacianWeight_[position] = (edges_[position].compact != m ? 2.0 : 1.0) * edges_[position].weight;
+    }
     inverseCurvature_.assign(m, 0.0);
     nodeEnergy_.assign(m, 0.0);
     padded_.assign(2 * static_cast<std::size_t>(m) + 2, 0.0);
@@ -124,7 +130,8 @@ void PlanarReducedKernels::prepareHessian(std::span<const Vector3> displacement,
     const std::vector<int>& nodes = problem_.unknownNodes();
     const int m = unknownCount_;
     const Edge* edges = edges_.data();
-    double* rotated = rotated_.data();
+    double* weighted = weightedRotated_.data();
+    double* weightedBack = weightedBackRotated_.data();
 #pragma omp parallel for schedule(static) if (worthThreading(edges_.size()))
     for (int a = 0; a < m; ++a) {
         const int i = nodes[a];
@@ -135,11 +142,21 @@ void PlanarReducedKernels::prepareHessian(std::span<const Vector3> displacement,
             const Edge& edge = edges[position];
             const double qx = c * edge.dx - s * edge.dy;
             const double qy = s * edge.dx + c * edge.dy;
-            rotated[2 * static_cast<std::size_t>(position)] = qx;
-            rotated[2 * static_cast<std::size_t>(position) + 1] = qy;
             const double ex = edge.dx + displacement[edge.node].x - ux;
             const double ey = edge.dy + displacement[edge.node].y - uy;
             curvature += edge.weight * (qx * ex + qy * ey);
+            // w q and w q_back, q_back = R_j d_ji = −R_j d (zero for a prescribed j): once per
+            // Newton step instead of once per CG iteration.
+            weighted[2 * static_cast<std::size_t>(position)] = edge.weight * qx;
+            weighted[2 * static_cast<std::size_t>(position) + 1] = edge.weight * qy;
+            double backX = 0.0, backY = 0.0;
+            if (edge.compact != m) {
+                const double cj = rotations[edge.node].m[0][0], sj = rotations[edge.node].m[1][0];
+                backX = -(cj * edge.dx - sj * edge.dy);
+                backY = -(sj * edge.dx + cj * edge.dy);
+            }
+            weightedBack[2 * static_cast<std::size_t>(position)] = edge.weight * backX;
+            weightedBack[2 * static_cast<std::size_t>(position) + 1] = edge.weight * backY;
         }
         // At a best fit H_δδ ≥ 0; where it is not positive the node's turn is left out (S = K
         // there), which keeps S positive definite and the step a descent direction.
@@ -154,38 +171,39 @@ void PlanarReducedKernels::applyHessian(std::span<const double> v, std::span<dou
         throw std::invalid_argument("PlanarReducedKernels: applyHessian with vectors of the wrong size");
     double* padded = padded_.data();  // the zero slot m stays zero
     for (std::size_t k = 0; k < v.size(); ++k) padded[k] = v[k];
-    const Edge* edges = edges_.data();
-    const double* rotated = rotated_.data();
-    const int* transpose = transpose_.data();
+    const int* compact = compact_.data();
+    const double* weighted = weightedRotated_.data();
+    const double* weightedBack = weightedBackRotated_.data();
+    const double* laplacianWeight = laplacianWeight_.data();
+    const int* offsets = offsets_.data();
     double* turn = turn_.data();  // the zero slot m stays zero
-#pragma omp parallel for schedule(static) if (worthThreading(edges_.size()))
+#pragma omp parallel for schedule(static) if (worthThreading(compact_.size()))
     for (int a = 0; a < m; ++a) {
         const double vx = padded[2 * a], vy = padded[2 * a + 1];
         double b = 0.0;
-        for (int position = offsets_[a]; position < offsets_[a + 1]; ++position) {
-            const Edge& edge = edges[position];
-            const double* vj = padded + 2 * static_cast<std::size_t>(edge.compact);
-            const double* q = rotated + 2 * static_cast<std::size_t>(position);
-            b += edge.weight * (q[0] * (vj[1] - vy) - q[1] * (vj[0] - vx));
+        for (int position = offsets[a]; position < offsets[a + 1]; ++position) {
+            const double* vj = padded + 2 * static_cast<std::size_t>(compact[position]);
+            const double* wq = weighted + 2 * static_cast<std::size_t>(position);
+            b += wq[0] * (vj[1] - vy) - wq[1] * (vj[0] - vx);
         }
         turn[a] = inverseCurvature_[a] * b;
     }
-#pragma omp parallel for schedule(static) if (worthThreading(edges_.size()))
+#pragma omp parallel for schedule(static) if (worthThreading(compact_.size()))
     for (int a = 0; a < m; ++a) {
         const double vx = padded[2 * a], vy = padded[2 * a + 1];
         const double ya = turn[a];
         double sx = 0.0, sy = 0.0;
-        for (int position = offsets_[a]; position < offsets_[a + 1]; ++position) {
-            const Edge& edge = edges[position];
-            const double* vj = padded + 2 * static_cast<std::size_t>(edge.compact);
-            const double* q = rotated + 2 * static_cast<std::size_t>(position);
-            const double* qBack = rotated + 2 * static_cast<std::size_t>(transpose[position]);
-            const double yj = turn[edge.compact];
-            const double both = edge.compact != m ? 2.0 : 1.0;
-            // (1 + t)(v_a − v_j) + y_a ẑ × q − t y_j ẑ × q_back, ẑ × q = (−q_y, q_x); the zero
-            // slot and the zero edge make the last term vanish for a prescribed neighbour.
-            sx += edge.weight * (both * (vx - vj[0]) - ya * q[1] + yj * qBack[1]);
-            sy += edge.weight * (both * (vy - vj[1]) + ya * q[0] - yj * qBack[0]);
+        for (int position = offsets[a]; position < offsets[a + 1]; ++position) {
+            const int j = compact[position];
+            const double* vj = padded + 2 * static_cast<std::size_t>(j);
+            const double* wq = weighted + 2 * static_cast<std::size_t>(position);
+            const double* wqBack = weightedBack + 2 * static_cast<std::size_t>(position);
+            const double yj = turn[j];
+            // (1 + t)(v_a − v_j) + y_a ẑ × q − t y_j ẑ × q_back, ẑ × q = (−q_y, q_x), all times
+            // w; the zero slot and the zero w q_back make the last term vanish for a
+            // prescribed neighbour.
+            sx += laplacianWeight[position] * (vx - vj[0]) - ya * wq[1] + yj * wqBack[1];
+            sy += laplacianWeight[position] * (vy - vj[1]) + ya * wq[0] - yj * wqBack[0];
         }
         y[2 * static_cast<std::size_t>(a)] = sx;
         y[2 * static_cast<std::size_t>(a) + 1] = sy;

@@ -53,8 +53,11 @@ private:
     int unknownCount_;
     std::vector<int> offsets_;   // edges of unknown node a: [offsets_[a], offsets_[a + 1])
     std::vector<Edge> edges_;
-    std::vector<int> transpose_;           // edge a→j: position of j→a, or the zero edge (edges_.size())
-    std::vector<double> rotated_;          // per edge q = R_a d (x, y), then a zero edge
+    // S v's data per edge a→j, set by prepareHessian and read in order by applyHessian (no
+    // lookup of the reverse edge, no product with w per CG iteration): w q, w q_back (q_back
+    // = R_j d_ji, zero for a prescribed j) and (1 + t_j) w.
+    std::vector<double> weightedRotated_, weightedBackRotated_, laplacianWeight_;
+    std::vector<int> compact_;             // per edge: the neighbour's unknown index or the zero slot
     std::vector<double> inverseCurvature_; // per unknown node H_δδ⁻¹
     std::vector<double> nodeEnergy_;       // work: per-node energies, summed in order
     std::vector<double> padded_;           // work: v with a zero slot
