@@ -70,9 +70,11 @@ double PlanarReducedKernels::fitAndEnergy(std::span<const Vector3> displacement,
             crossSum += edge.weight * (edge.dx * ey - edge.dy * ex);
             dotSum += edge.weight * (edge.dx * ex + edge.dy * ey);
         }
-        // The planar local step (LocalGlobalSolver: bestPlanarAngle).
-        const double angle = std::atan2(crossSum, dotSum);
-        const double c = std::cos(angle), s = std::sin(angle);
+        // The planar local step (LocalGlobalSolver: bestPlanarAngle, atan2(cross, dot)), as its
+        // cosine and sine directly: one square root instead of atan2, cos and sin (3 % of a
+        // pitching run).
+        const double length = std::sqrt(crossSum * crossSum + dotSum * dotSum);
+        const double c = length > 0.0 ? dotSum / length : 1.0, s = length > 0.0 ? crossSum / length : 0.0;
         double energy = 0.0;
         for (int position = offsets_[a]; position < offsets_[a + 1]; ++position) {
             const Edge& edge = edges[position];
