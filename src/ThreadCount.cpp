@@ -17,6 +17,22 @@ bool isSet(const char* variable)
     return value != nullptr && *value != '\0';
 }
 
+#ifdef _OPENMP
+// One thread means one thread in the libraries too. Debian's CHOLMOD (SuiteSparse 5.12) asks
+// for num_threads(CHOLMOD_OMP_NUM_THREADS), compiled as 4, in every large supernode of its
+// numeric factorisation, whatever OMP_NUM_THREADS says: with OMP_NUM_THREADS=1 a
+// one-step rbmMoveMesh on the 40k-node airfoil started 3 extra threads and made ~6000
+// context switches instead of ~60, 0.02-0.05 s of CPU out of 0.63 (2-core AMD EPYC,
+// 2026-11-25). OpenMP's max-active-levels of 0 makes every parallel region, num_threads
+// clause or not, run on the thread that meets it (OpenMP 5.0; GCC's libgomp honours it).
+// With more than one thread the level is OpenMP's own default again.
+void limitParallelRegions(int threads)
+{
+    static const int defaultActiveLevels = omp_get_max_active_levels();
+    omp_set_max_active_levels(threads == 1 ? 0 : defaultActiveLevels);
+}
+#endif
+
 } // namespace
 
 bool worthThreading(std::size_t work) { return work >= minimumThreadedWork; }
@@ -41,6 +57,7 @@ int applyThreadCountPolicy(int mpiRanks)
     const int threads = policyThreadCount(mpiRanks);
 #ifdef _OPENMP
     omp_set_num_threads(threads);
+    limitParallelRegions(threads);
 #endif
     return threads;
 }
@@ -50,6 +67,7 @@ void setThreadCount(int threads)
 #ifdef _OPENMP
     omp_set_dynamic(0);
     omp_set_num_threads(std::max(1, threads));
+    limitParallelRegions(std::max(1, threads));
 #else
     (void)threads;
 #endif

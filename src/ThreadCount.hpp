@@ -35,11 +35,13 @@ bool worthThreading(std::size_t work);
 // (the most it uses when it adapts to the load).
 int policyThreadCount(int mpiRanks);
 
-// Applies the policy for mpiRanks ranks; returns policyThreadCount(mpiRanks).
+// Applies the policy for mpiRanks ranks; returns policyThreadCount(mpiRanks). A count of 1
+// holds for the libraries' OpenMP regions too, even those with a num_threads clause
+// (CHOLMOD's factorisation asks for 4): OpenMP's max-active-levels is then 0.
 int applyThreadCountPolicy(int mpiRanks);
 
 // Exactly this many threads (≥ 1) for the following threaded loops, whatever the load
-// (ignored without OpenMP).
+// (ignored without OpenMP); 1 holds for the libraries' regions too, as above.
 void setThreadCount(int threads);
 
 // The most threads the next threaded loop will use (1 without OpenMP).

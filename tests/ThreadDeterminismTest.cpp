@@ -377,6 +377,39 @@ TEST(ThreadCount, PolicyIsOmpNumThreadsElseTheCoresElseOnePerRank)
 #endif
 }
 
+// CHOLMOD's numeric factorisation asks for num_threads(4) whatever OMP_NUM_THREADS says:
+// with one thread, such a region must run on one thread too (src/ThreadCount.cpp).
+TEST(ThreadCount, OneThreadHoldsForRegionsThatAskForMore)
+{
+#ifndef _OPENMP
+    GTEST_SKIP() << "built without OpenMP";
+#else
+    const int before = threadCount();
+    const int adaptsBefore = omp_get_dynamic();
+    auto threadsAskingForFour = [] {
+        int seen = 0;
+#pragma omp parallel num_threads(4)
+        {
+#pragma omp single
+            seen = omp_get_num_threads();
+        }
+        return seen;
+    };
+    setThreadCount(1);
+    EXPECT_EQ(threadsInAParallelRegion(), 1);
+    EXPECT_EQ(threadsAskingForFour(), 1);
+    setThreadCount(2);
+    EXPECT_EQ(threadsInAParallelRegion(), 2);
+    EXPECT_EQ(threadsAskingForFour(), 4);   // more than one: the libraries' own counts again
+    setThreadCount(1);
+    EXPECT_EQ(applyThreadCountPolicy(4), 1);   // one per MPI rank
+    EXPECT_EQ(threadsAskingForFour(), 1);
+    setThreadCount(before);
+    omp_set_dynamic(adaptsBefore);
+    EXPECT_EQ(threadsInAParallelRegion(), before);
+#endif
+}
+
 TEST(ThreadDeterminism, CellNeighbourGraphsAreTheSameForOneTwoAndThreeThreads)
 {
     const PolyMesh& mesh = airfoilMesh();
