@@ -1551,6 +1551,36 @@ TEST(Stiffening, NearestSurfaceMatchesABruteForceSearch)
     }
 }
 
+TEST(Stiffening, PrimitivesWithinARadiusAreThoseABruteForceSearchFinds)
+{
+    const PolyMesh mesh = makeHexBox(4, 3, 3, {0, 0, 0}, {4, 3, 3});
+    const std::vector<Label> patches{mesh.findPatch("xMin"), mesh.findPatch("zMax")};
+    const NearestSurface surface = patchSurface(mesh, mesh.points, patches);
+    std::mt19937 random(5);
+    std::uniform_real_distribution<double> coordinate(-2.0, 6.0);
+    std::uniform_real_distribution<double> radius(0.0, 3.0);
+    int someButNotAll = 0;
+    for (int k = 0; k < 200; ++k) {
+        const Vector3 p{coordinate(random), coordinate(random), coordinate(random)};
+        const double r = radius(random);
+        std::vector<int> expected;
+        for (int q = 0; q < static_cast<int>(surface.size()); ++q)
+            if (surface.squaredDistanceTo(q, p) <= r * r) expected.push_back(q);
+        std::vector<int> found;
+        ASSERT_TRUE(surface.primitivesWithin(p, r, found, surface.size()));
+        std::sort(found.begin(), found.end());
+        EXPECT_EQ(found, expected) << p << " radius " << r;
+        someButNotAll += !expected.empty() && expected.size() < surface.size();
+        // More than the limit: false.
+        if (expected.size() > 1) {
+            std::vector<int> partial;
+            EXPECT_FALSE(surface.primitivesWithin(p, r, partial, expected.size() - 1));
+            EXPECT_LE(partial.size(), expected.size() - 1);
+        }
+    }
+    EXPECT_GT(someButNotAll, 50);
+}
+
 TEST(Stiffening, NearestSurfaceWithAHintGivesTheSameDistances)
 {
     // A hint (the last query's nearest primitive, a stale one, none, or out of range) only
@@ -1579,6 +1609,78 @@ TEST(Stiffening, NearestSurfaceWithAHintGivesTheSameDistances)
         int again = hint;
         EXPECT_EQ(surface.distance(p, again), plain);
         EXPECT_EQ(again, hint);
+    }
+}
+
+namespace {
+
+// f_ij of every directed edge from the nearest of all primitives, one by one (no hierarchy,
+// no candidates): what stiffeningFactors must give to the last bit.
+std::vector<double> bruteForceStiffeningFactors(const CellNeighbourGraph& graph, std::span<const Vector3> points,
+                                                int dimension, const NearestSurface& surface, double exponent)
+{
+    auto position = [&](Label node) {
+        Vector3 p = points[node];
+        if (dimension == 2) p.z = 0.0;
+        return p;
+    };
+    double shortest = std::numeric_limits<double>::infinity();
+    for (Label i = 0; i < graph.nodeCount(); ++i)
+        for (Label e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e)
+            shortest = std::min(shortest, norm(position(graph.neighbours[e]) - position(i)));
+    std::vector<double> factors(graph.neighbours.size());
+    for (Label i = 0; i < graph.nodeCount(); ++i) {
+        for (Label e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e) {
+            const Label j = graph.neighbours[e];
+            const Vector3 midpoint = 0.5 * (position(std::min(i, j)) + position(std::max(i, j)));
+            double best = std::numeric_limits<double>::infinity();
+            for (int k = 0; k < static_cast<int>(surface.size()); ++k) best = std::min(best, surface.squaredDistanceTo(k, midpoint));
+            const double ratio = shortest / std::max(std::sqrt(best), shortest);
+            factors[e] = exponent == 1.0 ? ratio : exponent == 2.0 ? ratio * ratio : std::pow(ratio, exponent);
+        }
+    }
+    return factors;
+}
+
+} // namespace
+
+TEST(Stiffening, FactorsEqualABruteForceSearchOnTheAirfoilAndAPerturbedBox)
+{
+    // stiffeningFactors searches the candidates of all of a node's edges at once (and the
+    // hierarchy edge by edge where there are many): every factor equals the one from the
+    // nearest of all primitives to the last bit. The airfoil has both kinds of node (cells
+    // 1e-6 thin at the wall, 20 chords to the far field); the box has triangles (3D faces).
+    {
+        const PolyMesh& mesh = airfoilMesh();
+        const PseudoTwoDMesh flat = extractPseudoTwoD(mesh);
+        const CellNeighbourGraph graph = buildCellNeighbourGraph(flat.planar);
+        std::vector<Label> patches;
+        for (Label p = 0; p < static_cast<Label>(flat.planar.patches.size()); ++p) patches.push_back(p);
+        const NearestSurface surface = patchSurface(flat.planar, patches);
+        ASSERT_GT(surface.size(), 100u);
+        for (const double exponent : {0.8, 2.0}) {
+            const std::vector<double> factors = stiffeningFactors(graph, flat.planar.points, 2, surface, exponent);
+            const std::vector<double> expected = bruteForceStiffeningFactors(graph, flat.planar.points, 2, surface, exponent);
+            ASSERT_EQ(factors.size(), expected.size());
+            std::size_t different = 0;
+            for (std::size_t e = 0; e < factors.size(); ++e) different += factors[e] != expected[e];
+            EXPECT_EQ(different, 0u) << "exponent " << exponent;
+            EXPECT_LT(*std::min_element(factors.begin(), factors.end()), 1e-2);   // far edges count less
+            EXPECT_EQ(*std::max_element(factors.begin(), factors.end()), 1.0);
+        }
+    }
+    {
+        PolyMesh mesh = makeHexBox(6, 5, 4, {0, 0, 0}, {6, 5, 4});
+        std::mt19937 random(3);
+        std::uniform_real_distribution<double> jitter(-0.2, 0.2);
+        for (Vector3& p : mesh.points) p += Vector3{jitter(random), jitter(random), jitter(random)};
+        const CellNeighbourGraph graph = buildCellNeighbourGraph(mesh);
+        const std::vector<Label> patches{mesh.findPatch("xMin"), mesh.findPatch("zMax")};
+        const NearestSurface surface = patchSurface(mesh, mesh.points, patches);
+        const std::vector<double> factors = stiffeningFactors(graph, mesh.points, 3, surface, 1.0);
+        const std::vector<double> expected = bruteForceStiffeningFactors(graph, mesh.points, 3, surface, 1.0);
+        ASSERT_EQ(factors.size(), expected.size());
+        for (std::size_t e = 0; e < factors.size(); ++e) ASSERT_EQ(factors[e], expected[e]) << "edge " << e;
     }
 }
 

@@ -42,6 +42,14 @@ public:
     // the start; it receives this query's nearest primitive.
     double distance(const Vector3& point, int& hint) const;
 
+    // The indices of the primitives whose squared distance from `point` is at most
+    // radius², appended to `found` in the hierarchy's order; false (and `found` left
+    // incomplete) as soon as it would hold more than `limit`.
+    bool primitivesWithin(const Vector3& point, double radius, std::vector<int>& found, std::size_t limit) const;
+    // The squared distance from `point` to primitive `index` (0 ≤ index < size()), the very
+    // number distance() takes the minimum of.
+    double squaredDistanceTo(int index, const Vector3& point) const { return squaredDistance(primitives_[index], point); }
+
 private:
     struct Primitive {
         Vector3 a, b, c;
@@ -80,6 +88,10 @@ std::vector<Label> automaticStiffeningPatches(const PolyMesh& mesh);
 // f_ij per directed edge of `graph` (same order as graph.neighbours), see the file comment.
 // 2D (dimension 2) uses the x and y of the points only. exponent 0 gives all ones; 1 and 2
 // are computed without std::pow (the same bits as before non-integer exponents existed).
+// The midpoints of a node's edges are searched together: the primitives that can be nearest
+// to any of them lie within d + 2ρ of the node (d: its distance to a primitive, ρ: the
+// farthest midpoint), found once; each midpoint's distance is the minimum over those, the
+// same number a search of the whole hierarchy gives (tested against brute force).
 std::vector<double> stiffeningFactors(const CellNeighbourGraph& graph, std::span<const Vector3> points, int dimension,
                                       const NearestSurface& surface, double exponent);
 
