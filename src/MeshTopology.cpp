@@ -3,6 +3,7 @@
 #include "InputError.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <utility>
 
 namespace rbm {
@@ -221,8 +222,16 @@ std::vector<std::string> checkPolyMeshOrdering(const PolyMesh& mesh, const Topol
 
     builtTopology = buildMeshTopology(mesh);
     const MeshTopology& topology = builtTopology;
-    std::vector<std::pair<Label, Label>> edges;   // directed edges of one cell, reused
+    // Directed edge a→b of one cell as the key a·2³² + b: the points are checked to be in
+    // [0, 2³¹) above, so the keys sort as the pairs (a, b) do, and sorting and searching
+    // 64-bit integers is cheaper than pairs: on the 40k-node airfoil (54k cells, 18-20 edges
+    // each, one thread, best of 7) the whole check took 0.020-0.028 s before, 0.017-0.022 s
+    // with the keys (the machine shared; the same messages: malformedCaseTest).
+    std::vector<std::uint64_t> edges;   // reused
     std::vector<Label> outward;
+    auto key = [](Label a, Label b) {
+        return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
+    };
     for (Label c = 0; c < topology.cellCount; ++c) {
         const auto faces = topology.facesOf(c);
         if (faces.size() < 4) {
@@ -234,18 +243,19 @@ std::vector<std::string> checkPolyMeshOrdering(const PolyMesh& mesh, const Topol
             outward.clear();
             appendOutwardFace(mesh, f, c, outward);
             for (std::size_t i = 0; i < outward.size(); ++i) {
-                edges.emplace_back(outward[i], outward[(i + 1) % outward.size()]);
+                edges.push_back(key(outward[i], outward[(i + 1) % outward.size()]));
             }
         }
         std::sort(edges.begin(), edges.end());
         bool closed = true;
         for (std::size_t i = 0; i < edges.size() && closed; ++i) {
+            const Label first = static_cast<Label>(edges[i] >> 32);
+            const Label second = static_cast<Label>(edges[i] & 0xffffffffu);
             const bool repeated = i + 1 < edges.size() && edges[i] == edges[i + 1];
-            const bool reversePresent =
-                std::binary_search(edges.begin(), edges.end(), std::pair{edges[i].second, edges[i].first});
+            const bool reversePresent = std::binary_search(edges.begin(), edges.end(), key(second, first));
             if (repeated || !reversePresent) {
                 report(cellName(c) + " is not closed or not consistently oriented: its edge "
-                       + std::to_string(edges[i].first) + "-" + std::to_string(edges[i].second)
+                       + std::to_string(first) + "-" + std::to_string(second)
                        + (repeated ? " is used twice in the same direction"
                                    : " has no matching reversed edge on another of its faces")
                        + " (faces must point out of their owner and into their neighbour)");
