@@ -83,11 +83,12 @@ struct ReducedNewtonOptions {
     // GAMG): K⁻¹ is only the preconditioner of a flexible CG, which needs no exact inverse.
     double laplacianRelativeTolerance = 1e-4;
     // Converged when no node's estimated remaining displacement, |K⁻¹ P∇Ẽ| at the node, exceeds
-    // displacementTolerance × its shortest edge (≤ 0: off, only the gradient tests above).
-    // Mesh motion needs positions to a small fraction of the local cell, not the rounding level
-    // of the 1/|d|²-weighted gradient, which on a boundary-layer mesh costs twice the CG
-    // iterations (docs/motionSolver.md, "Reduced Newton").
-    double displacementTolerance = 0.0;
+    // displacementTolerance × its shortest edge (≤ 0: off, only the gradient tests above, to
+    // round-off). Mesh motion needs positions to a small fraction of the local cell, not the
+    // rounding level of the 1/|d|²-weighted gradient: on the airfoil series the default saves
+    // 27 % of the CG iterations (docs/motionSolver.md, "Reduced Newton"). The same default as
+    // the dictionary's (RigidBodyMotionOptions).
+    double displacementTolerance = 1e-6;
 };
 
 class ReducedNewtonSolver : public RbmSolver {
