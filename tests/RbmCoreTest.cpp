@@ -303,6 +303,80 @@ TEST(Rotation, RotationVectorRoundTripsThroughTheMatrix)
     }
 }
 
+// The Kabsch rotation from the SVD alone (bestRotation's fallback), to compare the polar fast path with.
+Matrix3 kabschBySvd(const Matrix3& covariance)
+{
+    SingularValueDecomposition svd = singularValueDecomposition(covariance);
+    auto determinant = [](const Matrix3& a) {
+        return dot(Vector3{a.m[0][0], a.m[1][0], a.m[2][0]},
+                   cross(Vector3{a.m[0][1], a.m[1][1], a.m[2][1]}, Vector3{a.m[0][2], a.m[1][2], a.m[2][2]}));
+    };
+    if (determinant(svd.u) * determinant(svd.v) < 0.0)
+        for (int i = 0; i < 3; ++i) svd.u.m[i][2] = -svd.u.m[i][2];
+    return svd.u * svd.v.transposed();
+}
+
+double largestDifference(const Matrix3& a, const Matrix3& b)
+{
+    double largest = 0.0;
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) largest = std::max(largest, std::abs(a.m[r][c] - b.m[r][c]));
+    return largest;
+}
+
+TEST(Rotation, PolarFastPathGivesTheKabschRotationOfTheSvd)
+{
+    std::mt19937 random(7);
+    std::uniform_real_distribution<double> entry(-1.0, 1.0);
+    int polarTaken = 0;
+    for (int sample = 0; sample < 2000; ++sample) {
+        // Rotation × symmetric positive definite (a stretched neighbourhood), plus a general part
+        // of growing size: conditions from 1 to ~10⁴, and some with det ≤ 0 (reflections).
+        const Matrix3 turn = rotationFromVector({2.0 * entry(random), 2.0 * entry(random), 2.0 * entry(random)});
+        Matrix3 stretch;
+        const double spread = std::pow(10.0, 4.0 * (sample % 5) / 4.0);
+        for (int k = 0; k < 3; ++k) stretch.m[k][k] = 1.0 + spread * std::abs(entry(random));
+        stretch.m[0][1] = stretch.m[1][0] = 0.3 * entry(random);
+        Matrix3 covariance = turn * stretch;
+        const double noise = (sample % 7) * 0.4;
+        for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 3; ++c) covariance.m[r][c] = 25.0 * (covariance.m[r][c] + noise * entry(random));
+        Matrix3 polar;
+        const bool fast = polarRotation(covariance, polar);
+        polarTaken += fast ? 1 : 0;
+        const Matrix3 expected = kabschBySvd(covariance);
+        const Matrix3 fitted = bestRotation(covariance);
+        EXPECT_LT(largestDifference(fitted, expected), 1e-12) << "sample " << sample;
+        if (fast) {
+            EXPECT_EQ(largestDifference(fitted, polar), 0.0);
+        }
+        // A proper rotation either way.
+        EXPECT_LT(largestDifference(fitted * fitted.transposed(), Matrix3::identity()), 1e-14);
+    }
+    // Most samples take the fast path; the reflections and the near-singular ones do not.
+    EXPECT_GT(polarTaken, 1000);
+    EXPECT_LT(polarTaken, 2000);
+}
+
+TEST(Rotation, PolarFastPathReturnsTheRotationOfARigidlyTurnedNeighbourhood)
+{
+    // S = R C with C = Σ d dᵀ symmetric positive definite: the fit is R, to rounding.
+    const Matrix3 turn = rotationFromVector({0.4, -1.3, 0.9});
+    Matrix3 spread;
+    spread.m[0][0] = 9.0, spread.m[1][1] = 8.5, spread.m[2][2] = 8.0, spread.m[0][2] = spread.m[2][0] = 0.25;
+    Matrix3 polar;
+    ASSERT_TRUE(polarRotation(turn * spread, polar));
+    EXPECT_LT(largestDifference(polar, turn), 4e-16);
+    // Reflections and rank-deficient (planar) neighbourhoods are left to the SVD.
+    Matrix3 mirrored = spread;
+    for (int c = 0; c < 3; ++c) mirrored.m[2][c] = -mirrored.m[2][c];
+    EXPECT_FALSE(polarRotation(mirrored, polar));
+    Matrix3 flat = spread;
+    for (int c = 0; c < 3; ++c) flat.m[2][c] = 0.0;
+    EXPECT_FALSE(polarRotation(flat, polar));
+    EXPECT_LT(largestDifference(bestRotation(flat) * bestRotation(flat).transposed(), Matrix3::identity()), 1e-15);
+}
+
 TEST(Rotation, RodriguesDerivativesMatchFiniteDifferences)
 {
     // Covers the series branch (|ω| < 1) and the closed-form branch.

@@ -45,6 +45,10 @@ namespace rbm::motion {
 // factor keeps R a proper rotation when the best orthogonal fit is a reflection).
 // Rank-deficient S (planar or collinear neighbourhoods) gives one of the optimal rotations.
 Matrix3 bestRotation(const Matrix3& covariance);
+// The same rotation for det S > 0 as the orthogonal polar factor of S, by Newton's iteration
+// (bestRotation's fast path); false (rotation untouched) where that does not apply (det S ≤ 0,
+// S nearly singular, no convergence), and bestRotation then takes the SVD.
+bool polarRotation(const Matrix3& covariance, Matrix3& rotation);
 // 2D: the angle (counter-clockwise) minimising Σ w |b − R(θ) a|², from Σ w a×b and Σ w a·b.
 inline double bestPlanarAngle(double crossSum, double dotSum);
 
