@@ -125,6 +125,10 @@ private:
     const RbmProblem& problem_;
     ReducedNewtonOptions options_;
     double absoluteTolerance_ = 0.0;
+    // Eisenstat–Walker forcing (solve): η = 0.9 (‖g‖/‖g_prev‖)^forcingExponent_, and the last
+    // step to finalForcingFactor_ × the final tolerance (the constructor sets 3D's values).
+    double forcingExponent_ = 2.0;
+    double finalForcingFactor_ = 0.1;
     std::vector<double> laplacian_;  // scalar K in blockPattern() order
     std::unique_ptr<BlockSystemSolver> system_;
     bool vectorSystem_ = false;  // sliding nodes: K ⊗ I projected, one system
