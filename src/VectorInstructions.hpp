@@ -1,0 +1,28 @@
+#pragma once
+// Whether the AVX variants of rbm's hottest loops may run (ReducedHessian3D's products,
+// ThreeVectorMultigrid's matrix products). They are compiled next to baseline x86-64 (SSE2)
+// variants with GCC's target attribute and chosen at run time, so the program still runs on a
+// CPU without AVX. Neither variant uses FMA, so both round lane by lane as the scalar formulas
+// and give the same result bit for bit; tests switch AVX off to check exactly that.
+
+namespace rbm {
+
+// Tests' switch (true by default).
+inline bool& avxKernelsAllowed()
+{
+    static bool allowed = true;
+    return allowed;
+}
+
+// The CPU has AVX and the switch allows it.
+inline bool useAvxKernels()
+{
+#if defined(__x86_64__) || defined(__i386__)
+    static const bool available = __builtin_cpu_supports("avx");
+    return available && avxKernelsAllowed();
+#else
+    return false;
+#endif
+}
+
+} // namespace rbm
