@@ -19,7 +19,7 @@ inline bool& avxKernelsAllowed()
 // The CPU has AVX2 and the switch allows it.
 inline bool useAvxKernels()
 {
-#if defined(__x86_64__) || defined(__i386__)
+#if defined(__x86_64__)
     static const bool available = __builtin_cpu_supports("avx2");
     return available && avxKernelsAllowed();
 #else

@@ -7,7 +7,9 @@
 
 #include <petscksp.h>
 
+#if defined(__x86_64__)
 #include <immintrin.h>
+#endif
 #if defined(_OPENMP)
 #include <omp.h>
 #endif
@@ -233,6 +235,7 @@ void multiplyRows(int begin, int end, const int* offsets, const int* columns, co
     }
 }
 
+#if defined(__x86_64__)
 // The same with AVX2: a column's three values in one register (a masked load, which does not read
 // past the vector's end), one multiply and one add per entry instead of three each. No FMA, so
 // every lane rounds as the scalar code does and the result is the same bit for bit. Measured on
@@ -253,6 +256,15 @@ template <typename Value>
         _mm256_maskstore_pd(y + 3 * static_cast<std::size_t>(row), firstThree, sum);
     }
 }
+#else
+// Other processors: the baseline (useAvxKernels() is false there).
+template <typename Value>
+void multiplyRowsAvx(int begin, int end, const int* offsets, const int* columns, const Value* values, const double* x,
+                     double* y)
+{
+    multiplyRows(begin, end, offsets, columns, values, x, y);
+}
+#endif
 
 } // namespace
 

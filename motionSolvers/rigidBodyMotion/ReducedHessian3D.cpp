@@ -197,8 +197,14 @@ struct PassData {
     }
 }
 
-[[gnu::target("avx2")]] void firstPassAvx(const PassData& data, int begin, int end) { firstPass(data, begin, end); }
-[[gnu::target("avx2")]] void secondPassAvx(const PassData& data, int begin, int end) { secondPass(data, begin, end); }
+#if defined(__x86_64__)
+#define RBM_AVX2_TARGET [[gnu::target("avx2")]]
+#else
+#define RBM_AVX2_TARGET  // other processors: the same code twice (useAvxKernels() is false there)
+#endif
+RBM_AVX2_TARGET void firstPassAvx(const PassData& data, int begin, int end) { firstPass(data, begin, end); }
+RBM_AVX2_TARGET void secondPassAvx(const PassData& data, int begin, int end) { secondPass(data, begin, end); }
+#undef RBM_AVX2_TARGET
 void firstPassBaseline(const PassData& data, int begin, int end) { firstPass(data, begin, end); }
 void secondPassBaseline(const PassData& data, int begin, int end) { secondPass(data, begin, end); }
 
