@@ -69,7 +69,7 @@ ReducedNewtonSolver::ReducedNewtonSolver(const RbmProblem& problem, ReducedNewto
         // hexahedral cube the squared ratio oversolved every step: ‖∇Ẽ‖ fell by 0.057, 0.028 and
         // 0.0039 where CG had been asked for 0.0079, 0.0029 and 0.00068 (the nonlinearity, not
         // the linear solve, limited the step). CG iterations 59 → 50 (4 9 12 14 20 → 4 8 10 12 16),
-        // still 5 Newton steps, the same energy to 5e-14; at 10⁵ cells 50 → 43.
+        // still 5 Newton steps, the same energy to 5e-14; at 10⁵ cells 50 → 45.
         forcingExponent_ = 0.5 * (1.0 + std::sqrt(5.0));
         finalForcingFactor_ = 0.2;
     }
