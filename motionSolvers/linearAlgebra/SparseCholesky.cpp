@@ -137,38 +137,46 @@ SparseCholesky::SparseCholesky(int n, std::span<const int> rowOffsets, std::span
         valueStart_[supernode + 1] = valueTotal;
     }
     belowRow_.resize(belowTotal);
-    value_.resize(valueTotal);
-    for (std::size_t supernode = 0; supernode < supernodes; ++supernode) {
-        const int first = super[supernode];
-        const int width = super[supernode + 1] - first;
-        const int rowCount = rowPointer[supernode + 1] - rowPointer[supernode];
-        const int* rowList = rows + rowPointer[supernode];
-        // CHOLMOD's block: column-major, rowCount rows, its first `width` rows the supernode's
-        // own columns.
-        const double* block = factorValues + valuePointer[supernode];
-        auto entry = [&](int row, int column) { return block[static_cast<std::size_t>(column) * rowCount + row]; };
-        double* out = value_.data() + valueStart_[supernode];
-        for (int r = 0; r < width; ++r) {
-            if (rowList[r] != first + r)
-                throw std::runtime_error("sparse Cholesky: unexpected factor layout in supernode " + std::to_string(supernode));
-            for (int c = 0; c < r; ++c) *out++ = entry(r, c);
-            const double diagonal = entry(r, r);
-            if (!(diagonal > 0.0))
-                throw std::runtime_error("sparse Cholesky: the matrix is not positive definite (column " +
-                                         std::to_string(first + r) + " of the factor)");
-            *out++ = 1.0 / diagonal;
+    // Written straight in the kept precision: no second copy of L at the peak (CHOLMOD's own
+    // factor is still alive here).
+    auto copyFactor = [&](auto* values) {
+        for (std::size_t supernode = 0; supernode < supernodes; ++supernode) {
+            const int first = super[supernode];
+            const int width = super[supernode + 1] - first;
+            const int rowCount = rowPointer[supernode + 1] - rowPointer[supernode];
+            const int* rowList = rows + rowPointer[supernode];
+            // CHOLMOD's block: column-major, rowCount rows, its first `width` rows the
+            // supernode's own columns.
+            const double* block = factorValues + valuePointer[supernode];
+            auto entry = [&](int row, int column) { return block[static_cast<std::size_t>(column) * rowCount + row]; };
+            auto* out = values + valueStart_[supernode];
+            using Entry = std::remove_pointer_t<decltype(out)>;
+            for (int r = 0; r < width; ++r) {
+                if (rowList[r] != first + r)
+                    throw std::runtime_error("sparse Cholesky: unexpected factor layout in supernode " +
+                                             std::to_string(supernode));
+                for (int c = 0; c < r; ++c) *out++ = static_cast<Entry>(entry(r, c));
+                const double diagonal = entry(r, r);
+                if (!(diagonal > 0.0))
+                    throw std::runtime_error("sparse Cholesky: the matrix is not positive definite (column " +
+                                             std::to_string(first + r) + " of the factor)");
+                *out++ = static_cast<Entry>(1.0 / diagonal);
+            }
+            int* belowOut = belowRow_.data() + belowStart_[supernode];
+            for (int r = width; r < rowCount; ++r) {
+                *belowOut++ = rowList[r];
+                for (int c = 0; c < width; ++c) *out++ = static_cast<Entry>(entry(r, c));
+            }
         }
-        int* belowOut = belowRow_.data() + belowStart_[supernode];
-        for (int r = width; r < rowCount; ++r) {
-            *belowOut++ = rowList[r];
-            for (int c = 0; c < width; ++c) *out++ = entry(r, c);
-        }
+    };
+    if (precision_ == FactorPrecision::single) {
+        singleValue_.resize(valueTotal);
+        copyFactor(singleValue_.data());
+    } else {
+        value_.resize(valueTotal);
+        copyFactor(value_.data());
     }
     permutation_.assign(permutation, permutation + n);
-    if (precision_ == FactorPrecision::single) {
-        singleValue_.assign(value_.begin(), value_.end());
-        std::vector<double>().swap(value_);
-    }
 #endif
 }
 
