@@ -163,10 +163,9 @@ SparseCholesky::SparseCholesky(int n, std::span<const int> rowOffsets, std::span
                 *out++ = static_cast<Entry>(1.0 / diagonal);
             }
             int* belowOut = belowRow_.data() + belowStart_[supernode];
-            for (int r = width; r < rowCount; ++r) {
-                *belowOut++ = rowList[r];
-                for (int c = 0; c < width; ++c) *out++ = static_cast<Entry>(entry(r, c));
-            }
+            for (int r = width; r < rowCount; ++r) *belowOut++ = rowList[r];
+            for (int c = 0; c < width; ++c)
+                for (int r = width; r < rowCount; ++r) *out++ = static_cast<Entry>(entry(r, c));
         }
     };
     if (precision_ == FactorPrecision::single) {
@@ -235,13 +234,16 @@ struct SupernodalLayout {
 };
 
 // The two triangular sweeps over y (size × dim, interleaved) with L's entries `values`;
-// `local` holds the widest supernode's columns, dim per column.
+// `local` holds the widest supernode's columns, `gathered` the longest list of rows below a
+// supernode, dim values each, one component after the other.
 template <int dim, typename Entry>
-RBM_ALWAYS_INLINE void sweepSupernodes(const SupernodalLayout& factor, const Entry* values, double* y, double* local)
+RBM_ALWAYS_INLINE void sweepSupernodes(const SupernodalLayout& factor, const Entry* values, double* y, double* local,
+                                       double* gathered)
 {
     // L y = P b, supernode by supernode.
     for (int s = 0; s < factor.supernodes; ++s) {
         const int first = factor.supernodeStart[s], width = factor.supernodeStart[s + 1] - first;
+        const int belowBegin = factor.belowStart[s], belowCount = factor.belowStart[s + 1] - belowBegin;
         const auto* entry = values + factor.valueStart[s];
         for (int r = 0; r < width; ++r)
             for (int q = 0; q < dim; ++q) local[q * width + r] = y[static_cast<std::size_t>(first + r) * dim + q];
@@ -254,23 +256,36 @@ RBM_ALWAYS_INLINE void sweepSupernodes(const SupernodalLayout& factor, const Ent
         }
         for (int r = 0; r < width; ++r)
             for (int q = 0; q < dim; ++q) y[static_cast<std::size_t>(first + r) * dim + q] = local[q * width + r];
-        // The rows below: one dot product per row and component.
-        for (int t = factor.belowStart[s]; t < factor.belowStart[s + 1]; ++t, entry += width) {
-            double* yi = y + static_cast<std::size_t>(factor.belowRow[t]) * dim;
-            double sums[dim];
-            dotProducts<dim>(entry, local, width, width, sums);
-            for (int q = 0; q < dim; ++q) yi[q] -= sums[q];
+        // The rows below: the block (column-major) times the supernode's values, one contiguous
+        // multiply-add per column into `gathered`, then one update per row.
+        for (int k = 0; k < dim * belowCount; ++k) gathered[k] = 0.0;
+        for (int c = 0; c < width; ++c, entry += belowCount) {
+            double minus[dim];
+            for (int q = 0; q < dim; ++q) minus[q] = -local[q * width + c];
+            subtractMultiples<dim>(entry, minus, gathered, static_cast<std::size_t>(belowCount), belowCount);
+        }
+        for (int t = 0; t < belowCount; ++t) {
+            double* yi = y + static_cast<std::size_t>(factor.belowRow[belowBegin + t]) * dim;
+            for (int q = 0; q < dim; ++q) yi[q] -= gathered[q * belowCount + t];
         }
     }
     // Lᵀ z = y, supernodes backwards.
     for (int s = factor.supernodes - 1; s >= 0; --s) {
         const int first = factor.supernodeStart[s], width = factor.supernodeStart[s + 1] - first;
+        const int belowBegin = factor.belowStart[s], belowCount = factor.belowStart[s + 1] - belowBegin;
         for (int r = 0; r < width; ++r)
             for (int q = 0; q < dim; ++q) local[q * width + r] = y[static_cast<std::size_t>(first + r) * dim + q];
-        // The rows below: an axpy into the supernode's columns per row.
+        // The rows below: their values gathered once, then one contiguous dot product per
+        // column of the block.
+        for (int t = 0; t < belowCount; ++t) {
+            const double* yi = y + static_cast<std::size_t>(factor.belowRow[belowBegin + t]) * dim;
+            for (int q = 0; q < dim; ++q) gathered[q * belowCount + t] = yi[q];
+        }
         const auto* below = values + factor.valueStart[s] + static_cast<std::size_t>(width) * (width + 1) / 2;
-        for (int t = factor.belowStart[s]; t < factor.belowStart[s + 1]; ++t, below += width) {
-            subtractMultiples<dim>(below, y + static_cast<std::size_t>(factor.belowRow[t]) * dim, local, width, width);
+        for (int c = 0; c < width; ++c, below += belowCount) {
+            double sums[dim];
+            dotProducts<dim>(below, gathered, static_cast<std::size_t>(belowCount), belowCount, sums);
+            for (int q = 0; q < dim; ++q) local[q * width + c] -= sums[q];
         }
         // The diagonal block transposed: back substitution, rows from the last, each row's
         // entries subtracted from the columns before it once its value is known.
@@ -288,16 +303,16 @@ RBM_ALWAYS_INLINE void sweepSupernodes(const SupernodalLayout& factor, const Ent
 
 // Both sweeps for 1–3 right-hand sides with single or double entries; compiled twice below.
 RBM_ALWAYS_INLINE void sweepAny(const SupernodalLayout& factor, const double* doubleValues, const float* singleValues,
-                                int count, double* y, double* local)
+                                int count, double* y, double* local, double* gathered)
 {
     if (singleValues) {
-        if (count == 1) sweepSupernodes<1>(factor, singleValues, y, local);
-        else if (count == 2) sweepSupernodes<2>(factor, singleValues, y, local);
-        else sweepSupernodes<3>(factor, singleValues, y, local);
+        if (count == 1) sweepSupernodes<1>(factor, singleValues, y, local, gathered);
+        else if (count == 2) sweepSupernodes<2>(factor, singleValues, y, local, gathered);
+        else sweepSupernodes<3>(factor, singleValues, y, local, gathered);
     } else {
-        if (count == 1) sweepSupernodes<1>(factor, doubleValues, y, local);
-        else if (count == 2) sweepSupernodes<2>(factor, doubleValues, y, local);
-        else sweepSupernodes<3>(factor, doubleValues, y, local);
+        if (count == 1) sweepSupernodes<1>(factor, doubleValues, y, local, gathered);
+        else if (count == 2) sweepSupernodes<2>(factor, doubleValues, y, local, gathered);
+        else sweepSupernodes<3>(factor, doubleValues, y, local, gathered);
     }
 }
 
@@ -310,15 +325,15 @@ RBM_ALWAYS_INLINE void sweepAny(const SupernodalLayout& factor, const double* do
 #define RBM_AVX2_TARGET  // other processors: the same code twice (useAvxKernels() is false there)
 #endif
 RBM_AVX2_TARGET void sweepAvx(const SupernodalLayout& factor, const double* doubleValues, const float* singleValues,
-                              int count, double* y, double* local)
+                              int count, double* y, double* local, double* gathered)
 {
-    sweepAny(factor, doubleValues, singleValues, count, y, local);
+    sweepAny(factor, doubleValues, singleValues, count, y, local, gathered);
 }
 #undef RBM_AVX2_TARGET
 void sweepBaseline(const SupernodalLayout& factor, const double* doubleValues, const float* singleValues, int count,
-                   double* y, double* local)
+                   double* y, double* local, double* gathered)
 {
-    sweepAny(factor, doubleValues, singleValues, count, y, local);
+    sweepAny(factor, doubleValues, singleValues, count, y, local, gathered);
 }
 
 } // namespace
@@ -328,20 +343,24 @@ void SparseCholesky::solve(std::span<const double> b, std::span<double> x, int c
     const std::size_t total = static_cast<std::size_t>(size_) * count;
     if (count < 1 || count > 3 || b.size() != total || x.size() != total)
         throw std::invalid_argument("sparse Cholesky: solve with vectors of the wrong size");
-    int widest = 0;
-    for (std::size_t s = 0; s + 1 < supernodeStart_.size(); ++s)
+    int widest = 0, longest = 0;
+    for (std::size_t s = 0; s + 1 < supernodeStart_.size(); ++s) {
         widest = std::max(widest, supernodeStart_[s + 1] - supernodeStart_[s]);
-    // y (permuted, interleaved), then per supernode its columns' values deinterleaved.
-    work_.resize(total + static_cast<std::size_t>(widest) * count);
+        longest = std::max(longest, belowStart_[s + 1] - belowStart_[s]);
+    }
+    // y (permuted, interleaved), then per supernode its columns' values and the values of the
+    // rows below it, deinterleaved.
+    work_.resize(total + (static_cast<std::size_t>(widest) + static_cast<std::size_t>(longest)) * count);
     double* y = work_.data();
     double* local = y + total;
+    double* gathered = local + static_cast<std::size_t>(widest) * count;
     for (int k = 0; k < size_; ++k)
         for (int c = 0; c < count; ++c) y[static_cast<std::size_t>(k) * count + c] = b[static_cast<std::size_t>(permutation_[k]) * count + c];
     const SupernodalLayout layout{supernodeCount(), supernodeStart_.data(), belowStart_.data(), belowRow_.data(),
                                   valueStart_.data()};
     const float* single = precision_ == FactorPrecision::single ? singleValue_.data() : nullptr;
-    if (useAvxKernels()) sweepAvx(layout, value_.data(), single, count, y, local);
-    else sweepBaseline(layout, value_.data(), single, count, y, local);
+    if (useAvxKernels()) sweepAvx(layout, value_.data(), single, count, y, local, gathered);
+    else sweepBaseline(layout, value_.data(), single, count, y, local, gathered);
     for (int k = 0; k < size_; ++k)
         for (int c = 0; c < count; ++c) x[static_cast<std::size_t>(permutation_[k]) * count + c] = y[static_cast<std::size_t>(k) * count + c];
 }

@@ -63,7 +63,7 @@ private:
     // Supernode s holds the columns [supernodeStart_[s], supernodeStart_[s + 1]) of L (width w).
     // Its entries, from valueStart_[s] on: the w × w diagonal block's lower triangle, packed
     // by rows with each diagonal entry stored as its reciprocal, then the block of the rows
-    // below it, row-major (belowRow_[belowStart_[s] + t] is row t's index in L), w per row.
+    // below it, column-major (belowRow_[belowStart_[s] + t] is row t's index in L).
     std::vector<int> supernodeStart_;
     std::vector<int> belowStart_;
     std::vector<int> belowRow_;
