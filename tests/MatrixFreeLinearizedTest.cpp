@@ -391,6 +391,37 @@ TEST(ReducedNewton, GradientAndHessianMatchFiniteDifferencesOfTheReducedEnergy)
     }
 }
 
+TEST(ReducedNewton, ReducedHessianIsSymmetric)
+{
+    // CG needs uᵀ S v = vᵀ S u. In 2D S's per-edge data are kept in single precision (w q of
+    // edge a→j and w q_back of edge j→a are the same product rounded the same way), so the
+    // products stay symmetric to double round-off, not just to single precision.
+    for (const auto& [dimension, mirror] : {std::pair{2, false}, {3, false}, {3, true}}) {
+        const GridCase c = gridCase(dimension, dimension == 2 ? 10 : 4, mirror, 7);
+        const RbmProblem& problem = *c.problem;
+        const std::vector<Vector3> prescribed = largeTopMotion(c);
+        ReducedNewtonSolver solver(problem);
+        std::vector<Vector3> displacement = prescribed;
+        for (int node : problem.unknownNodes()) displacement[node] = 0.5 * prescribed[node];
+        std::mt19937 random(3);
+        std::uniform_real_distribution<double> value(-1.0, 1.0);
+        const std::size_t size = static_cast<std::size_t>(problem.unknownNodeCount()) * dimension;
+        std::vector<double> u(size), v(size);
+        for (double& entry : u) entry = value(random);
+        for (double& entry : v) entry = value(random);
+        const std::vector<double> su = solver.reducedHessianTimes(displacement, u);
+        const std::vector<double> sv = solver.reducedHessianTimes(displacement, v);
+        double uSv = 0.0, vSu = 0.0, scale = 0.0;
+        for (std::size_t k = 0; k < size; ++k) {
+            uSv += u[k] * sv[k];
+            vSu += v[k] * su[k];
+            scale += std::abs(u[k] * sv[k]);
+        }
+        EXPECT_GT(std::abs(uSv), 1e-3 * scale) << dimension;
+        EXPECT_LT(std::abs(uSv - vSu), 1e-12 * scale) << dimension << "D mirror " << mirror;
+    }
+}
+
 // The method to round-off (displacementTolerance 0), for the tests of its exactness; the
 // default stops within 1e-6 of each node's shortest edge.
 ReducedNewtonOptions roundOffOptions()

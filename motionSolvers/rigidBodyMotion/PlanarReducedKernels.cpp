@@ -38,13 +38,13 @@ PlanarReducedKernels::PlanarReducedKernels(const RbmProblem& problem)
             for (int back = offsets_[b]; back < offsets_[b + 1] && !found; ++back) found = edges_[back].compact == a;
             if (!found) throw std::invalid_argument("PlanarReducedKernels: the graph is not symmetric");
         }
-    weightedRotated_.assign(2 * edges_.size(), 0.0);
-    weightedBackRotated_.assign(2 * edges_.size(), 0.0);
+    weightedRotated_.assign(2 * edges_.size(), 0.0f);
+    weightedBackRotated_.assign(2 * edges_.size(), 0.0f);
     laplacianWeight_.resize(edges_.size());
     compact_.resize(edges_.size());
     for (std::size_t position = 0; position < edges_.size(); ++position) {
         compact_[position] = edges_[position].compact;
-        laplacianWeight_[position] = (edges_[position].compact != m ? 2.0 : 1.0) * edges_[position].weight;
+        laplacianWeight_[position] = static_cast<float>((edges_[position].compact != m ? 2.0 : 1.0) * edges_[position].weight);
     }
     inverseCurvature_.assign(m, 0.0);
     nodeEnergy_.assign(m, 0.0);
@@ -132,8 +132,8 @@ void PlanarReducedKernels::prepareHessian(std::span<const Vector3> displacement,
     const std::vector<int>& nodes = problem_.unknownNodes();
     const int m = unknownCount_;
     const Edge* edges = edges_.data();
-    double* weighted = weightedRotated_.data();
-    double* weightedBack = weightedBackRotated_.data();
+    float* weighted = weightedRotated_.data();
+    float* weightedBack = weightedBackRotated_.data();
 #pragma omp parallel for schedule(static) if (worthThreading(edges_.size()))
     for (int a = 0; a < m; ++a) {
         const int i = nodes[a];
@@ -149,16 +149,16 @@ void PlanarReducedKernels::prepareHessian(std::span<const Vector3> displacement,
             curvature += edge.weight * (qx * ex + qy * ey);
             // w q and w q_back, q_back = R_j d_ji = −R_j d (zero for a prescribed j): once per
             // Newton step instead of once per CG iteration.
-            weighted[2 * static_cast<std::size_t>(position)] = edge.weight * qx;
-            weighted[2 * static_cast<std::size_t>(position) + 1] = edge.weight * qy;
+            weighted[2 * static_cast<std::size_t>(position)] = static_cast<float>(edge.weight * qx);
+            weighted[2 * static_cast<std::size_t>(position) + 1] = static_cast<float>(edge.weight * qy);
             double backX = 0.0, backY = 0.0;
             if (edge.compact != m) {
                 const double cj = rotations[edge.node].m[0][0], sj = rotations[edge.node].m[1][0];
                 backX = -(cj * edge.dx - sj * edge.dy);
                 backY = -(sj * edge.dx + cj * edge.dy);
             }
-            weightedBack[2 * static_cast<std::size_t>(position)] = edge.weight * backX;
-            weightedBack[2 * static_cast<std::size_t>(position) + 1] = edge.weight * backY;
+            weightedBack[2 * static_cast<std::size_t>(position)] = static_cast<float>(edge.weight * backX);
+            weightedBack[2 * static_cast<std::size_t>(position) + 1] = static_cast<float>(edge.weight * backY);
         }
         // At a best fit H_δδ ≥ 0; where it is not positive the node's turn is left out (S = K
         // there), which keeps S positive definite and the step a descent direction.
@@ -174,9 +174,9 @@ void PlanarReducedKernels::applyHessian(std::span<const double> v, std::span<dou
     double* padded = padded_.data();  // the zero slot m stays zero
     for (std::size_t k = 0; k < v.size(); ++k) padded[k] = v[k];
     const int* compact = compact_.data();
-    const double* weighted = weightedRotated_.data();
-    const double* weightedBack = weightedBackRotated_.data();
-    const double* laplacianWeight = laplacianWeight_.data();
+    const float* weighted = weightedRotated_.data();
+    const float* weightedBack = weightedBackRotated_.data();
+    const float* laplacianWeight = laplacianWeight_.data();
     const int* offsets = offsets_.data();
     double* turn = turn_.data();  // the zero slot m stays zero
 #pragma omp parallel for schedule(static) if (worthThreading(compact_.size()))
@@ -185,7 +185,7 @@ void PlanarReducedKernels::applyHessian(std::span<const double> v, std::span<dou
         double b = 0.0;
         for (int position = offsets[a]; position < offsets[a + 1]; ++position) {
             const double* vj = padded + 2 * static_cast<std::size_t>(compact[position]);
-            const double* wq = weighted + 2 * static_cast<std::size_t>(position);
+            const float* wq = weighted + 2 * static_cast<std::size_t>(position);
             b += wq[0] * (vj[1] - vy) - wq[1] * (vj[0] - vx);
         }
         turn[a] = inverseCurvature_[a] * b;
@@ -198,8 +198,8 @@ void PlanarReducedKernels::applyHessian(std::span<const double> v, std::span<dou
         for (int position = offsets[a]; position < offsets[a + 1]; ++position) {
             const int j = compact[position];
             const double* vj = padded + 2 * static_cast<std::size_t>(j);
-            const double* wq = weighted + 2 * static_cast<std::size_t>(position);
-            const double* wqBack = weightedBack + 2 * static_cast<std::size_t>(position);
+            const float* wq = weighted + 2 * static_cast<std::size_t>(position);
+            const float* wqBack = weightedBack + 2 * static_cast<std::size_t>(position);
             const double yj = turn[j];
             // (1 + t)(v_a − v_j) + y_a ẑ × q − t y_j ẑ × q_back, ẑ × q = (−q_y, q_x), all times
             // w; the zero slot and the zero w q_back make the last term vanish for a

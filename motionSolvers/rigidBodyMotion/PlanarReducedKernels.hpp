@@ -55,8 +55,13 @@ private:
     std::vector<Edge> edges_;
     // S v's data per edge a→j, set by prepareHessian and read in order by applyHessian (no
     // lookup of the reverse edge, no product with w per CG iteration): w q, w q_back (q_back
-    // = R_j d_ji, zero for a prescribed j) and (1 + t_j) w.
-    std::vector<double> weightedRotated_, weightedBackRotated_, laplacianWeight_;
+    // = R_j d_ji, zero for a prescribed j) and (1 + t_j) w. In single precision: S v reads 36
+    // instead of 64 bytes per edge (its passes are bound by memory traffic, like K's
+    // back-substitution); S is only Newton's model, so the step is off by ~1e-7 relatively,
+    // while the gradient (double) decides convergence. w q of a→j and w q_back of j→a are the
+    // same product rounded the same way, so S stays symmetric to round-off
+    // (ReducedNewton.ReducedHessianIsSymmetric).
+    std::vector<float> weightedRotated_, weightedBackRotated_, laplacianWeight_;
     std::vector<int> compact_;             // per edge: the neighbour's unknown index or the zero slot
     std::vector<double> inverseCurvature_; // per unknown node H_δδ⁻¹
     std::vector<double> nodeEnergy_;       // work: per-node energies, summed in order
