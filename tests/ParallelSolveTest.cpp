@@ -193,6 +193,14 @@ TEST(ParallelMoveMesh, PitchingAirfoilStepsMatchTheSerialRunAndOnlyRankZeroWrite
             std::string edited = std::regex_replace(text.str(), std::regex("endTime +2;"), "endTime 0.075;");
             edited = std::regex_replace(edited, std::regex("writeInterval +10;"), "writeInterval 1;");
             std::ofstream(controlDict) << edited;
+            // Both runs to round-off (displacementTolerance 0): one rank starts from the turned
+            // harmonic interpolation (rbm's own factorisation of K), two ranks from the plain
+            // one, and with the default tolerance each would stop at its own point within it.
+            const fs::path dynamicMeshDict = target / "constant" / "dynamicMeshDict";
+            std::stringstream dictionary;
+            dictionary << std::ifstream(dynamicMeshDict).rdbuf();
+            std::ofstream(dynamicMeshDict) << std::regex_replace(dictionary.str(), std::regex("subSteps +auto;"),
+                                                                 "subSteps auto; displacementTolerance 0;");
         }
         std::ostringstream out, err;
         MoveMeshOptions options;
@@ -222,10 +230,10 @@ TEST(ParallelMoveMesh, PitchingAirfoilStepsMatchTheSerialRunAndOnlyRankZeroWrite
             const std::vector<Vector3> parallel = io::readPolyMeshPoints(parallelCase / time / "polyMesh" / "points.gz");
             const std::vector<Vector3> initial = io::readPolyMeshPoints(serialCase / "constant" / "polyMesh" / "points.gz");
             ASSERT_EQ(serial.size(), parallel.size());
-            // Both runs stop within displacementTolerance (default 1e-6 of a node's shortest
-            // edge, the estimate at most 5× low; the smallest cell is ~1e-3), each from its own
-            // arithmetic (one rank: rbm's factorisation of K; two: PETSc's).
-            EXPECT_LT(largestDifference(serial, parallel), 5e-6 * 1e-3) << time;
+            // Both at the gradient's rounding level from different starts: measured 1.4e-10
+            // (the stiffened far field, where the weighted gradient hardly sees a node), far
+            // below 1e-6 of the smallest cell (~1e-3).
+            EXPECT_LT(largestDifference(serial, parallel), 1e-9) << time;
             EXPECT_GT(largestDifference(serial, initial), 1e-3) << time;
         }
         // No stray output from the other rank: exactly the serial run's time folders.

