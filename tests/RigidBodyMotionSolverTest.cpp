@@ -977,6 +977,23 @@ const PolyMesh& airfoilMesh()
     return mesh;
 }
 
+// The shortest face edge at every point of the mesh.
+std::vector<double> shortestEdgeAtEachPoint(const PolyMesh& mesh)
+{
+    std::vector<double> shortestEdge(mesh.pointCount(), std::numeric_limits<double>::infinity());
+    for (Label f = 0; f < mesh.faceCount(); ++f) {
+        const auto face = mesh.face(f);
+        for (std::size_t k = 0; k < face.size(); ++k) {
+            const Label a = face[k];
+            const Label b = face[(k + 1) % face.size()];
+            const double length = norm(mesh.points[a] - mesh.points[b]);
+            shortestEdge[a] = std::min(shortestEdge[a], length);
+            shortestEdge[b] = std::min(shortestEdge[b], length);
+        }
+    }
+    return shortestEdge;
+}
+
 struct AirfoilRun {
     MotionSolveReport report;
     double maxNonOrthogonality = 0.0;
@@ -1006,17 +1023,7 @@ TEST(RigidBodyMotionSolverTimeSteps, ColdAirfoilStepStartsFromTheTurnedInterpola
     // 4, but the plain start then ends 1.5e-5 of a node's shortest edge from the round-off
     // solution, the turned one within 1e-5.
     const PolyMesh& mesh = airfoilMesh();
-    std::vector<double> shortestEdge(mesh.pointCount(), std::numeric_limits<double>::infinity());
-    for (Label f = 0; f < mesh.faceCount(); ++f) {
-        const auto face = mesh.face(f);
-        for (std::size_t k = 0; k < face.size(); ++k) {
-            const Label a = face[k];
-            const Label b = face[(k + 1) % face.size()];
-            const double length = norm(mesh.points[a] - mesh.points[b]);
-            shortestEdge[a] = std::min(shortestEdge[a], length);
-            shortestEdge[b] = std::min(shortestEdge[b], length);
-        }
-    }
+    const std::vector<double> shortestEdge = shortestEdgeAtEachPoint(mesh);
     auto solver = makeSolver(mesh, "subSteps 1;");
     const AirfoilRun run = turnAirfoil(*solver, 4.0);
     auto exact = makeSolver(mesh, "subSteps 1; displacementTolerance 0;");
@@ -1093,17 +1100,7 @@ TEST(RigidBodyMotionSolverTimeSteps, WarmStartsWithTheDefaultStiffeningEndWhereC
     // edge) away at (-4.42, -3.96). Without stiffening: below 1e-8 everywhere (the test above).
     // Bounded relative to the shortest edge at each point, the measure that matters for the cells.
     const PolyMesh& mesh = airfoilMesh();
-    std::vector<double> shortestEdge(mesh.pointCount(), std::numeric_limits<double>::infinity());
-    for (Label f = 0; f < mesh.faceCount(); ++f) {
-        const auto face = mesh.face(f);
-        for (std::size_t k = 0; k < face.size(); ++k) {
-            const Label a = face[k];
-            const Label b = face[(k + 1) % face.size()];
-            const double length = norm(mesh.points[a] - mesh.points[b]);
-            shortestEdge[a] = std::min(shortestEdge[a], length);
-            shortestEdge[b] = std::min(shortestEdge[b], length);
-        }
-    }
+    const std::vector<double> shortestEdge = shortestEdgeAtEachPoint(mesh);
     // To round-off (displacementTolerance 0): with the default each solve stops within 1e-6 of
     // a node's shortest edge from its own start (cold: the turned harmonic interpolation), and
     // two such end points may differ by a few times that.
