@@ -21,6 +21,10 @@
 #include <cstddef>
 #include <string>
 
+#if defined(_OPENMP)
+#include <omp.h>
+#endif
+
 namespace rbm {
 
 // Loops with less work than this (edges, faces or cells visited) run on one thread: a
@@ -51,6 +55,25 @@ int threadCount();
 // adapts to the load (asks OpenMP with an empty parallel region, a few microseconds). For
 // loops whose threaded form costs more arithmetic than their serial one.
 int threadsAvailable();
+
+// Calls pass(begin, end) on [0, count) split into contiguous ranges, one per thread (one call
+// on the whole range when threads is false). For kernels that must see their rows in order
+// (the AVX2 variants of ReducedHessian3D and ThreeVectorMultigrid); every item's result is its
+// own, so the result is the same for any thread count.
+template <typename Pass>
+void forEachThreadRange(int count, bool threads, Pass pass)
+{
+#pragma omp parallel if (threads)
+    {
+        int begin = 0, end = count;
+#if defined(_OPENMP)
+        const int teamSize = omp_get_num_threads(), thread = omp_get_thread_num();
+        begin = static_cast<int>(static_cast<long long>(count) * thread / teamSize);
+        end = static_cast<int>(static_cast<long long>(count) * (thread + 1) / teamSize);
+#endif
+        pass(begin, end);
+    }
+}
 
 // For the start-up log, e.g. "up to 2 (OpenMP, fewer when the machine is loaded; ...)".
 std::string describeThreadCount();

@@ -10,9 +10,6 @@
 #if defined(__x86_64__)
 #include <immintrin.h>
 #endif
-#if defined(_OPENMP)
-#include <omp.h>
-#endif
 
 #include <algorithm>
 #include <cmath>
@@ -277,19 +274,12 @@ void ThreeVectorMultigrid::multiply(const Level& level, const double* x, double*
     const float* single = level.singleValues.empty() ? nullptr : level.singleValues.data();
     const bool avx = useAvxKernels();
     // Contiguous row ranges, one per thread: every row is its own sum, the same for any thread count.
-#pragma omp parallel if (worthThreading(static_cast<std::size_t>(offsets[rows])))
-    {
-        int begin = 0, end = rows;
-#if defined(_OPENMP)
-        const int count = omp_get_num_threads(), thread = omp_get_thread_num();
-        begin = static_cast<int>(static_cast<long long>(rows) * thread / count);
-        end = static_cast<int>(static_cast<long long>(rows) * (thread + 1) / count);
-#endif
+    forEachThreadRange(rows, worthThreading(static_cast<std::size_t>(offsets[rows])), [&](int begin, int end) {
         if (avx && single) multiplyRowsAvx(begin, end, offsets, columns, single, x, y);
         else if (avx) multiplyRowsAvx(begin, end, offsets, columns, values, x, y);
         else if (single) multiplyRows(begin, end, offsets, columns, single, x, y);
         else multiplyRows(begin, end, offsets, columns, values, x, y);
-    }
+    });
 }
 
 // λ_max(D⁻¹A) by power iteration on three start vectors (deterministic), the largest ratio.

@@ -3,9 +3,6 @@
 #include "ThreadCount.hpp"
 #include "VectorInstructions.hpp"
 
-#if defined(_OPENMP)
-#include <omp.h>
-#endif
 
 #include <stdexcept>
 
@@ -208,23 +205,6 @@ RBM_AVX2_TARGET void secondPassAvx(const PassData& data, int begin, int end) { s
 void firstPassBaseline(const PassData& data, int begin, int end) { firstPass(data, begin, end); }
 void secondPassBaseline(const PassData& data, int begin, int end) { secondPass(data, begin, end); }
 
-// Calls pass on contiguous node ranges, one per thread (every node's result is its own: the
-// same for any thread count).
-template <typename Pass>
-void overRanges(int m, bool threads, Pass pass)
-{
-#pragma omp parallel if (threads)
-    {
-        int begin = 0, end = m;
-#if defined(_OPENMP)
-        const int count = omp_get_num_threads(), thread = omp_get_thread_num();
-        begin = static_cast<int>(static_cast<long long>(m) * thread / count);
-        end = static_cast<int>(static_cast<long long>(m) * (thread + 1) / count);
-#endif
-        pass(begin, end);
-    }
-}
-
 } // namespace
 
 void ReducedHessian3D::apply(std::span<const double> v, std::span<double> y)
@@ -245,11 +225,11 @@ void ReducedHessian3D::apply(std::span<const double> v, std::span<double> y)
                         y.data()};
     const bool threads = worthThreading(graph.neighbours.size());
     const bool avx = useAvxKernels();
-    overRanges(m, threads, [&](int begin, int end) {
+    forEachThreadRange(m, threads, [&](int begin, int end) {
         if (avx) firstPassAvx(data, begin, end);
         else firstPassBaseline(data, begin, end);
     });
-    overRanges(m, threads, [&](int begin, int end) {
+    forEachThreadRange(m, threads, [&](int begin, int end) {
         if (avx) secondPassAvx(data, begin, end);
         else secondPassBaseline(data, begin, end);
     });
