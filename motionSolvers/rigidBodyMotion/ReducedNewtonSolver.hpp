@@ -39,9 +39,12 @@
 // is then the preconditioned gradient −K⁻¹∇Ẽ, which is exactly a local/global step. A
 // backtracking line search on Ẽ keeps every step a descent step.
 //
-// Start: the lower-energy of (a) the harmonic interpolation K⁻¹ b(I) of the prescribed
-// displacements and, with an initial guess (the previous time step), (b) the guess moved by
-// the harmonic increment of the boundary, K⁻¹ (b(new) − b(old)).
+// Start: cold, the harmonic interpolation K⁻¹ b(I) of the prescribed displacements or, where
+// the boundary is one rigid body in a fixed frame (2D and 3D, one rank, no sliding nodes), the
+// harmonic interpolation of the body's turn (every node turned by exp(s [ω]×) and shifted by
+// s t, s = K⁻¹ b(1 on the body)), whichever has the lower energy; warm (the previous time
+// step), the guess moved by a secant step and the harmonic increment of the boundary,
+// K⁻¹ (b(new) − b(old)).
 //
 // Convergence: as CoupledNewtonSolver: ‖P∇Ẽ‖ below the absolute tolerance (1e-11 × mean w|d|
 // × √unknown nodes by default), or 1e-10 × its start value, or 10 × the rounding level of the
@@ -89,9 +92,9 @@ struct ReducedNewtonOptions {
     // 27 % of the CG iterations (docs/motionSolver.md, "Reduced Newton"). The same default as
     // the dictionary's (RigidBodyMotionOptions).
     double displacementTolerance = 1e-6;
-    // Cold starts where the boundary is one rigid body in a fixed frame (2D, K factorised by
-    // rbm): also try the harmonic interpolation of the body's turn (solve(); false: only the
-    // harmonic interpolation of the displacements, for tests).
+    // Cold starts where the boundary is one rigid body in a fixed frame (2D or 3D; K factorised
+    // by rbm or the 3D multigrid cycle): also try the harmonic interpolation of the body's turn
+    // (solve(); false: only the harmonic interpolation of the displacements, for tests).
     bool turnedStart = true;
 };
 
@@ -123,8 +126,11 @@ private:
     // firstPreconditioned: K⁻¹(−g) when the caller has it (else computed here).
     bool newtonDirection(std::span<const double> g, double forcing, const std::vector<double>* firstPreconditioned,
                          std::span<double> step, int& iterations, bool& negativeCurvature);
-    // Cold start for one rigid body in a fixed frame (2D): see solve(). False where it does not apply.
+    // Cold start for one rigid body in a fixed frame: see solve(). False where it does not apply.
     bool turnedHarmonicStart(std::span<const Vector3> prescribedDisplacement, std::vector<Vector3>& u);
+    // s = K⁻¹ b for one scalar right-hand side (the turned start's share of the body's motion):
+    // K's factor, or CG preconditioned by the 3D cycle to a loose tolerance. False if CG failed.
+    bool harmonicShare(std::span<const double> b, std::span<double> s);
     // max over unknown nodes of |v_node| / (the node's shortest edge), v compact.
     double largestRelativeDisplacement(std::span<const double> v) const;
 
