@@ -14,12 +14,16 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 namespace rbm::motion {
 
 namespace {
 
 constexpr int coarsestRowLimit = 4000;
+// rbm's own hierarchy stops at this many rows (its coarsest level is factorised densely: a few
+// milliseconds here, against GAMG's 50 rows and one level more).
+constexpr int aggregationCoarsestRows = 500;
 constexpr int powerIterations = 10;
 
 bool isType(PetscObject object, const char* type)
@@ -73,6 +77,27 @@ std::unique_ptr<ThreeVectorMultigrid> ThreeVectorMultigrid::build(std::span<cons
     configureFromOptions(ksp.get(), options);
     const PetscObject pcObject = reinterpret_cast<PetscObject>(pc);
     if (!isType(pcObject, PCGAMG) && !isType(pcObject, PCMG)) return nullptr;
+    // The hierarchy: rbm's smoothed aggregation (SmoothedAggregation.hpp) unless
+    // -rbm_<solverName>_cycle_hierarchy gamg asks for PCGAMG's (then GAMG's options apply).
+    char hierarchy[16] = "aggregation";
+    RBM_CHECK_PETSC(PetscOptionsGetString(nullptr, options.prefix().c_str(), "-cycle_hierarchy", hierarchy,
+                                          sizeof(hierarchy), nullptr));
+    PetscInt degree = 2;
+    RBM_CHECK_PETSC(PetscOptionsGetInt(nullptr, options.prefix().c_str(), "-cycle_degree", &degree, nullptr));
+    const std::string hierarchyName = hierarchy;
+    if (hierarchyName != "gamg" && hierarchyName != "aggregation")
+        throw std::invalid_argument("-" + options.prefix() + "cycle_hierarchy " + hierarchyName +
+                                    ": expected aggregation or gamg");
+    if (hierarchyName == "aggregation" && isType(pcObject, PCGAMG)) {
+        try {
+            auto cycle = std::make_unique<ThreeVectorMultigrid>(
+                rowOffsets, columns, values, buildSmoothedAggregation(rowOffsets, columns, values, aggregationCoarsestRows));
+            cycle->degree_ = std::max<int>(1, static_cast<int>(degree));
+            return cycle;
+        } catch (const std::runtime_error&) {
+            return nullptr;
+        }
+    }
     const PetscInt rows = static_cast<PetscInt>(rowOffsets.size()) - 1;
     PetscMat matrix;
     // PETSc only reads the arrays (no MatSetValues on this matrix).
@@ -85,8 +110,6 @@ std::unique_ptr<ThreeVectorMultigrid> ThreeVectorMultigrid::build(std::span<cons
     RBM_CHECK_PETSC(KSPSetOperators(ksp, matrix, matrix));
     RBM_CHECK_PETSC(KSPSetUp(ksp));
     RBM_CHECK_PETSC(PCSetUp(pc));
-    PetscInt degree = 2;
-    RBM_CHECK_PETSC(PetscOptionsGetInt(nullptr, options.prefix().c_str(), "-cycle_degree", &degree, nullptr));
     try {
         auto cycle = std::make_unique<ThreeVectorMultigrid>(pc, rowOffsets, columns, values);
         cycle->degree_ = std::max<int>(1, static_cast<int>(degree));
@@ -108,43 +131,64 @@ ThreeVectorMultigrid::ThreeVectorMultigrid(PC pc, std::span<const int> rowOffset
     PetscInt petscLevels = 0;
     RBM_CHECK_PETSC(PCMGGetLevels(pc, &petscLevels));
     if (petscLevels < 1) throw std::runtime_error("ThreeVectorMultigrid: no levels");
-    levels_.resize(static_cast<std::size_t>(petscLevels));
-    for (int index = 0; index < petscLevels; ++index) {
-        Level& level = levels_[index];
+    std::vector<AggregationLevel> coarser(static_cast<std::size_t>(petscLevels - 1));
+    for (int index = 0; index + 1 < petscLevels; ++index) {
         const PetscInt petscLevel = petscLevels - 1 - index;  // PETSc: 0 = coarsest
+        Mat interpolation = nullptr;
+        RBM_CHECK_PETSC(PCMGGetInterpolation(pc, petscLevel, &interpolation));
+        copyMatrix(interpolation, coarser[index].interpolation.offsets, coarser[index].interpolation.columns,
+                   coarser[index].interpolation.values);
+        KSP smoother = nullptr;
+        Mat operatorMatrix = nullptr;
+        RBM_CHECK_PETSC(PCMGGetSmoother(pc, petscLevel - 1, &smoother));
+        RBM_CHECK_PETSC(KSPGetOperators(smoother, &operatorMatrix, nullptr));
+        copyMatrix(operatorMatrix, coarser[index].coarseOperator.offsets, coarser[index].coarseOperator.columns,
+                   coarser[index].coarseOperator.values);
+    }
+    setUp(rowOffsets, columns, values, std::move(coarser));
+}
+
+ThreeVectorMultigrid::ThreeVectorMultigrid(std::span<const int> rowOffsets, std::span<const int> columns,
+                                           std::span<const double> values, std::vector<AggregationLevel> coarser)
+{
+    setUp(rowOffsets, columns, values, std::move(coarser));
+}
+
+void ThreeVectorMultigrid::setUp(std::span<const int> rowOffsets, std::span<const int> columns,
+                                 std::span<const double> values, std::vector<AggregationLevel> coarser)
+{
+    const int levelTotal = static_cast<int>(coarser.size()) + 1;
+    levels_.resize(static_cast<std::size_t>(levelTotal));
+    for (int index = 0; index < levelTotal; ++index) {
+        Level& level = levels_[index];
         if (index == 0) {
             level.rows = static_cast<int>(rowOffsets.size()) - 1;
             level.offsets = rowOffsets.data();
             level.columns = columns.data();
             level.values = values.data();
         } else {
-            KSP smoother = nullptr;
-            Mat operatorMatrix = nullptr;
-            RBM_CHECK_PETSC(PCMGGetSmoother(pc, petscLevel, &smoother));
-            RBM_CHECK_PETSC(KSPGetOperators(smoother, &operatorMatrix, nullptr));
-            copyMatrix(operatorMatrix, level.owned.offsets, level.owned.columns, level.owned.values);
-            level.rows = static_cast<int>(level.owned.offsets.size()) - 1;
+            level.owned = std::move(coarser[index - 1].coarseOperator);
+            level.rows = level.owned.rows();
             level.offsets = level.owned.offsets.data();
             level.columns = level.owned.columns.data();
             level.values = level.owned.values.data();
         }
-        if (petscLevel > 0) {
-            Mat interpolation = nullptr;
-            RBM_CHECK_PETSC(PCMGGetInterpolation(pc, petscLevel, &interpolation));
-            PetscInt rows = 0, coarseRows = 0;
-            RBM_CHECK_PETSC(MatGetSize(interpolation, &rows, &coarseRows));
-            if (rows != level.rows) throw std::runtime_error("ThreeVectorMultigrid: interpolation does not match");
+        if (index + 1 < levelTotal) {
             Csr& p = level.interpolation;
-            copyMatrix(interpolation, p.offsets, p.columns, p.values);
+            p = std::move(coarser[index].interpolation);
+            if (p.rows() != level.rows) throw std::runtime_error("ThreeVectorMultigrid: interpolation does not match");
+            const int coarseRows = coarser[index].coarseOperator.rows();
+            for (int column : p.columns)
+                if (column < 0 || column >= coarseRows) throw std::runtime_error("ThreeVectorMultigrid: interpolation does not match");
             // Its transpose, rows in order (restriction gathers).
             Csr& r = level.restriction;
             r.offsets.assign(static_cast<std::size_t>(coarseRows) + 1, 0);
             for (int column : p.columns) ++r.offsets[column + 1];
-            for (PetscInt row = 0; row < coarseRows; ++row) r.offsets[row + 1] += r.offsets[row];
+            for (int row = 0; row < coarseRows; ++row) r.offsets[row + 1] += r.offsets[row];
             r.columns.resize(p.columns.size());
             r.values.resize(p.values.size());
             std::vector<int> next(r.offsets.begin(), r.offsets.end() - 1);
-            for (int row = 0; row < rows; ++row)
+            for (int row = 0; row < level.rows; ++row)
                 for (int k = p.offsets[row]; k < p.offsets[row + 1]; ++k) {
                     const int position = next[p.columns[k]]++;
                     r.columns[position] = row;
@@ -159,7 +203,7 @@ ThreeVectorMultigrid::ThreeVectorMultigrid(PC pc, std::span<const int> rowOffset
             for (int k = level.offsets[row]; k < level.offsets[row + 1]; ++k)
                 if (level.columns[k] == row) level.inverseDiagonal[row] = level.values[k] > 0.0 ? 1.0 / level.values[k] : 0.0;
     }
-    for (int index = 1; index < petscLevels; ++index)
+    for (int index = 1; index < levelTotal; ++index)
         if (static_cast<int>(levels_[index - 1].restriction.offsets.size()) - 1 != levels_[index].rows)
             throw std::runtime_error("ThreeVectorMultigrid: level sizes do not match");
 

@@ -2,7 +2,8 @@
 // One multigrid V-cycle of a scalar symmetric positive definite matrix A applied to THREE
 // right-hand sides at once (the x, y and z components of a displacement field), on one rank.
 //
-// The hierarchy (coarse operators and interpolations) is taken from a set-up PCMG / PCGAMG and
+// The hierarchy (coarse operators and interpolations) is rbm's smoothed aggregation
+// (SmoothedAggregation.hpp; the default of build()) or taken from a set-up PCMG / PCGAMG and
 // copied; the finest operator is the caller's CSR (its pattern referenced, its values copied in
 // single precision). The cycle itself is
 // rbm's: per level Chebyshev smoothing of degree 2 on D⁻¹A over [0.1 λ, 1.1 λ] (PETSc's default
@@ -17,6 +18,8 @@
 // Determinism: every loop writes its own row; restriction is a product with the stored
 // transpose of the interpolation (rows gathered, not scattered); sums run in CSR order.
 
+#include "SmoothedAggregation.hpp"
+
 #include <petscpc.h>
 
 #include <memory>
@@ -28,13 +31,19 @@ namespace rbm::motion {
 
 class ThreeVectorMultigrid {
 public:
-    // The hierarchy of the CSR matrix set up by PCGAMG on PETSC_COMM_SELF, PETSc's matrix
-    // wrapping the caller's arrays (no copy), with PETSc's GAMG defaults and then the options
-    // under rbm_<solverName>_ (e.g. -rbm_reduced_pc_gamg_threshold). PETSc's objects are released
-    // before returning. nullptr when the options choose a preconditioner that is not multigrid,
-    // or on more than one rank. (Measured on the twisted 10⁶-cell hex cube: without squaring the
-    // graph, -pc_gamg_square_graph 0, the set-up took 7.0 s instead of 4.2 s and the peak was
-    // 210 MiB higher, for 49 instead of 59 CG iterations: the same total time.)
+    // The cycle of the CSR matrix: by default on rbm's smoothed-aggregation hierarchy
+    // (SmoothedAggregation.hpp, coarsest level at most 500 rows); with
+    // -rbm_<solverName>_cycle_hierarchy gamg on the hierarchy PCGAMG sets up on PETSC_COMM_SELF
+    // (PETSc's matrix wrapping the caller's arrays, no copy; GAMG's defaults, then the options
+    // under rbm_<solverName>_, e.g. -rbm_reduced_pc_gamg_threshold; PETSc's objects released
+    // before returning). nullptr when the options choose a preconditioner that is not multigrid,
+    // on more than one rank, or where the hierarchy cannot be built. Measured on the twisted
+    // 10⁶-cell hexahedral cube (one thread): the reduced Newton solver's set-up (K, the
+    // hierarchy, per-node data) 5.7–6.0 s with GAMG's hierarchy (5.4 s in GAMG, 3.1 s of it its
+    // graph and the coarsening on the squared graph), 2.9–3.1 s with rbm's aggregation (most of
+    // it PETSc's Pᵀ A P), and no more CG iterations (21 against 23; at 10⁵ cells 18 against 20). (GAMG without squaring the graph,
+    // -pc_gamg_square_graph 0: 7.0 s instead of 4.2 s, 49 instead of 59 CG iterations; misk
+    // distance-2 or hem coarsening: 9.6 s and 19 s.)
     static std::unique_ptr<ThreeVectorMultigrid> build(std::span<const int> rowOffsets, std::span<const int> columns,
                                                        std::span<const double> values, std::string_view solverName);
 
@@ -45,6 +54,11 @@ public:
     ThreeVectorMultigrid(PC pc, std::span<const int> rowOffsets, std::span<const int> columns,
                          std::span<const double> values);
 
+    // The finest operator the caller's CSR, the coarser levels given, finest first
+    // (SmoothedAggregation.hpp). Throws std::runtime_error as the constructor above.
+    ThreeVectorMultigrid(std::span<const int> rowOffsets, std::span<const int> columns, std::span<const double> values,
+                         std::vector<AggregationLevel> coarser);
+
     // z = M⁻¹ r, interleaved vectors (3 values per row).
     void apply(std::span<const double> r, std::span<double> z);
 
@@ -54,10 +68,7 @@ public:
     double bytes() const;
 
 private:
-    struct Csr {
-        std::vector<int> offsets, columns;
-        std::vector<double> values;
-    };
+    using Csr = CompressedRows;
     struct Level {
         int rows = 0;
         const int* offsets = nullptr;  // the operator (the caller's on the finest level)
@@ -72,6 +83,8 @@ private:
         std::vector<double> rhs, solution;  // interleaved, 3 per row
     };
 
+    void setUp(std::span<const int> rowOffsets, std::span<const int> columns, std::span<const double> values,
+               std::vector<AggregationLevel> coarser);
     void multiply(const Level& level, const double* x, double* y) const;  // y = A x (3 vectors)
     void smooth(Level& level, bool zeroGuess);
     void cycle(int index);

@@ -31,8 +31,8 @@
 // neither the displacements nor the boundary values, so it is factorised (2D: Cholesky) or
 // its multigrid set up ONCE, when the solver is built, and kept for every iteration, sub-step
 // and time step. In 3D above 20 000 unknown nodes (one rank, no sliding nodes) K⁻¹ is ONE
-// multigrid V-cycle applied to the three components at once (ThreeVectorMultigrid.hpp, GAMG's
-// hierarchy set up on K's own arrays) and S is applied from per-node data only
+// multigrid V-cycle applied to the three components at once (ThreeVectorMultigrid.hpp, rbm's
+// smoothed-aggregation hierarchy of K) and S is applied from per-node data only
 // (ReducedHessian3D.hpp); CG is flexible (Polak–Ribière), so the cycle needs not be an exact
 // inverse. Inexact Newton (Eisenstat–Walker forcing) solves early steps loosely; a
 // direction of negative curvature stops CG (Steihaug), and at the first CG iteration the step
