@@ -30,9 +30,10 @@
 // preconditioner (S ≤ K; S = K on fields whose neighbourhoods do not turn): K depends on
 // neither the displacements nor the boundary values, so it is factorised (2D: Cholesky) or
 // its multigrid set up ONCE, when the solver is built, and kept for every iteration, sub-step
-// and time step. In 3D above 20 000 unknown nodes (one rank, no sliding nodes) K⁻¹ is ONE
-// multigrid V-cycle applied to the three components at once (ThreeVectorMultigrid.hpp, rbm's
-// smoothed-aggregation hierarchy of K) and S is applied from per-node data only
+// and time step. In 3D above 20 000 unknown nodes (one rank) K⁻¹ is ONE multigrid V-cycle
+// applied to the three components at once (ThreeVectorMultigrid.hpp, rbm's smoothed-aggregation
+// hierarchy of K); with sliding nodes, CG on the projected K ⊗ I preconditioned by that cycle
+// between projections, to laplacianRelativeTolerance. S is applied from per-node data only
 // (ReducedHessian3D.hpp); CG is flexible (Polak–Ribière), so the cycle needs not be an exact
 // inverse. Inexact Newton (Eisenstat–Walker forcing) solves early steps loosely; a
 // direction of negative curvature stops CG (Steihaug), and at the first CG iteration the step
@@ -82,8 +83,9 @@ struct ReducedNewtonOptions {
     double relativeTolerance = 1e-10;                             // on ‖P∇Ẽ‖ relative to the start
     double absoluteTolerance = -1.0;                              // < 0: CoupledNewtonOptions' default
     int maximumLinearIterations = 1000;                           // CG iterations per Newton step
-    // When K ⊗ I is solved iteratively (3D with sliding nodes, or -rbm_reduced_inner_solve: CG +
-    // GAMG): K⁻¹ is only the preconditioner of a flexible CG, which needs no exact inverse.
+    // When K ⊗ I is solved iteratively (3D with sliding nodes: CG + the cycle between
+    // projections; -rbm_reduced_inner_solve: CG + GAMG): K⁻¹ is only the preconditioner of a
+    // flexible CG, which needs no exact inverse.
     double laplacianRelativeTolerance = 1e-4;
     // Converged when no node's estimated remaining displacement, |K⁻¹ P∇Ẽ| at the node, exceeds
     // displacementTolerance × its shortest edge (≤ 0: off, only the gradient tests above, to
@@ -131,6 +133,9 @@ private:
     // s = K⁻¹ b for one scalar right-hand side (the turned start's share of the body's motion):
     // K's factor, or CG preconditioned by the 3D cycle to a loose tolerance. False if CG failed.
     bool harmonicShare(std::span<const double> b, std::span<double> s);
+    // 3D with sliding nodes: z = (P (K ⊗ I) P)⁻¹ P r by CG preconditioned by the cycle of the
+    // scalar K between projections, to relativeTolerance. False if CG failed.
+    bool projectedCycleSolve(std::span<const double> r, std::span<double> z, double relativeTolerance);
     // max over unknown nodes of |v_node| / (the node's shortest edge), v compact.
     double largestRelativeDisplacement(std::span<const double> v) const;
 
@@ -161,6 +166,7 @@ private:
     std::vector<double> componentIn_, componentOut_, projected_;
     std::vector<double> inverseShortestEdge_;  // per unknown node, for displacementTolerance
     std::vector<double> cgResidual_, cgPreconditioned_, cgPreviousPreconditioned_, cgDirection_, cgProduct_;
+    std::vector<double> cycleResidual_, cyclePreconditioned_, cycleDirection_, cycleProduct_;  // projectedCycleSolve
 };
 
 } // namespace rbm::motion
