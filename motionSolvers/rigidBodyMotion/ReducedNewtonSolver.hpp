@@ -56,7 +56,8 @@
 //
 // PETSc options: -rbm_reduced_max_it N (Newton steps), -rbm_reduced_monitor (one line per step);
 // the Laplacian's solver reads rbm_reduced_ (e.g. -rbm_reduced_pc_factor_mat_solver_type mumps,
-// -rbm_reduced_pc_gamg_threshold 0.02, -rbm_reduced_cycle_degree 3; -rbm_reduced_inner_solve: K⁻¹
+// -rbm_reduced_cycle_hierarchy gamg (then -rbm_reduced_pc_gamg_threshold 0.02 …),
+// -rbm_reduced_cycle_degree 3; -rbm_reduced_inner_solve: K⁻¹
 // by CG + GAMG to laplacianRelativeTolerance instead of one cycle, the behaviour before).
 // Result: iterations = Newton steps, linearIterations = CG iterations, residualNorm = ‖P∇E‖,
 // energy = E.
