@@ -40,6 +40,25 @@ struct GridCase {
     std::vector<Vector3> prescribed;
 };
 
+// The cell-neighbour graph of cells given as point lists: neighbours = points sharing a cell.
+CellNeighbourGraph graphOfCells(int nodeCount, const std::vector<std::vector<int>>& cells)
+{
+    std::vector<std::vector<int>> neighbours(nodeCount);
+    for (const std::vector<int>& cell : cells)
+        for (int a : cell)
+            for (int b : cell)
+                if (a != b) neighbours[a].push_back(b);
+    CellNeighbourGraph graph;
+    graph.offsets.assign(1, 0);
+    for (std::vector<int>& list : neighbours) {
+        std::sort(list.begin(), list.end());
+        list.erase(std::unique(list.begin(), list.end()), list.end());
+        graph.neighbours.insert(graph.neighbours.end(), list.begin(), list.end());
+        graph.offsets.push_back(static_cast<Label>(graph.neighbours.size()));
+    }
+    return graph;
+}
+
 GridCase gridCase(int dimension, int n, bool mirror, unsigned seed)
 {
     GridCase c;
@@ -60,31 +79,17 @@ GridCase gridCase(int dimension, int n, bool mirror, unsigned seed)
                 }
                 c.points.push_back(p);
             }
-    // Cells as point lists; neighbours = points sharing a cell.
     const int nodeCount = static_cast<int>(c.points.size());
-    std::vector<std::vector<int>> neighbours(nodeCount);
-    auto addCell = [&](const std::vector<int>& cell) {
-        for (int a : cell)
-            for (int b : cell)
-                if (a != b) neighbours[a].push_back(b);
-    };
+    std::vector<std::vector<int>> cells;
     for (int k = 0; k < (dimension == 3 ? n : 1); ++k)
         for (int j = 0; j < n; ++j)
             for (int i = 0; i < n; ++i) {
-                std::vector<int> cell;
+                std::vector<int>& cell = cells.emplace_back();
                 for (int dk = 0; dk < (dimension == 3 ? 2 : 1); ++dk)
                     for (int dj = 0; dj < 2; ++dj)
                         for (int di = 0; di < 2; ++di) cell.push_back(index(i + di, j + dj, k + dk));
-                addCell(cell);
             }
-    CellNeighbourGraph graph;
-    graph.offsets.assign(1, 0);
-    for (std::vector<int>& list : neighbours) {
-        std::sort(list.begin(), list.end());
-        list.erase(std::unique(list.begin(), list.end()), list.end());
-        graph.neighbours.insert(graph.neighbours.end(), list.begin(), list.end());
-        graph.offsets.push_back(static_cast<Label>(graph.neighbours.size()));
-    }
+    CellNeighbourGraph graph = graphOfCells(nodeCount, cells);
 
     std::vector<NodeConstraint> constraints(nodeCount);
     c.prescribed.assign(nodeCount, Vector3{});
@@ -571,6 +576,27 @@ GridCase withFreeSides(GridCase c)
     return c;
 }
 
+// The same boundary solved without and with the turned cold start (options otherwise alike):
+// {plain, turned}.
+std::pair<RbmResult, RbmResult> plainAndTurnedSolves(const RbmProblem& problem, ReducedNewtonOptions options,
+                                                     const std::vector<Vector3>& prescribed)
+{
+    options.turnedStart = false;
+    const RbmResult plain = ReducedNewtonSolver(problem, options).solve(prescribed);
+    options.turnedStart = true;
+    return {plain, ReducedNewtonSolver(problem, options).solve(prescribed)};
+}
+
+// Both converged to the same minimum (energy to 1e-10, every node to 1e-8), a non-trivial one.
+void expectTheSameMinimum(const RbmResult& expected, const RbmResult& result)
+{
+    ASSERT_TRUE(expected.converged) << expected.reason;
+    ASSERT_TRUE(result.converged) << result.reason;
+    EXPECT_GT(expected.energy, 1e-3);
+    EXPECT_NEAR(result.energy, expected.energy, 1e-10 * expected.energy);
+    EXPECT_LT(largestDifference(result.displacement, expected.displacement), 1e-8);
+}
+
 TEST(ReducedNewton, TurnedStartIsKeptOnlyWhereItsEnergyIsLower)
 {
     // One rigid body in a fixed frame: the nodes of the grid's central square (a body) turned
@@ -599,17 +625,8 @@ TEST(ReducedNewton, TurnedStartIsKeptOnlyWhereItsEnergyIsLower)
         }
     }
     const RbmProblem problem(2, grid.points, grid.problem->graph(), constraints, EdgeWeighting::inverseDistanceSquared);
-    ReducedNewtonOptions plainOptions = roundOffOptions();
-    plainOptions.turnedStart = false;
-    ReducedNewtonSolver plain(problem, plainOptions);
-    ReducedNewtonSolver turned(problem, roundOffOptions());
-    const RbmResult expected = plain.solve(prescribed);
-    const RbmResult result = turned.solve(prescribed);
-    ASSERT_TRUE(expected.converged) << expected.reason;
-    ASSERT_TRUE(result.converged) << result.reason;
-    EXPECT_GT(expected.energy, 1e-3);
-    EXPECT_NEAR(result.energy, expected.energy, 1e-10 * expected.energy);
-    EXPECT_LT(largestDifference(result.displacement, expected.displacement), 1e-8);
+    const auto [expected, result] = plainAndTurnedSolves(problem, roundOffOptions(), prescribed);
+    expectTheSameMinimum(expected, result);
     EXPECT_EQ(result.iterations, expected.iterations);
     EXPECT_EQ(result.linearIterations, expected.linearIterations);
     EXPECT_EQ(result.displacement, expected.displacement);  // the same start, the same arithmetic
@@ -633,26 +650,15 @@ TEST(ReducedNewton, In3DTheTurnedStartFollowsATwistToTheSameMinimum)
             const double dx = p.x - 0.5, dy = p.y - 0.5;
             prescribed[node] = {std::cos(angle) * dx - std::sin(angle) * dy - dx, std::sin(angle) * dx + std::cos(angle) * dy - dy, 0.0};
         }
-        ReducedNewtonOptions plainOptions = roundOffOptions();
-        plainOptions.linearSolver = kind;
-        plainOptions.turnedStart = false;
-        ReducedNewtonOptions turnedOptions = plainOptions;
-        turnedOptions.turnedStart = true;
-        ReducedNewtonSolver plain(*c.problem, plainOptions);
-        ReducedNewtonSolver turned(*c.problem, turnedOptions);
-        const RbmResult expected = plain.solve(prescribed);
-        const RbmResult result = turned.solve(prescribed);
-        ASSERT_TRUE(expected.converged) << expected.reason;
-        ASSERT_TRUE(result.converged) << result.reason;
-        EXPECT_GT(expected.energy, 1e-3);
-        EXPECT_NEAR(result.energy, expected.energy, 1e-10 * expected.energy);
-        EXPECT_LT(largestDifference(result.displacement, expected.displacement), 1e-8);
+        ReducedNewtonOptions options = roundOffOptions();
+        options.linearSolver = kind;
+        const auto [expected, result] = plainAndTurnedSolves(*c.problem, options, prescribed);
+        expectTheSameMinimum(expected, result);
         EXPECT_LE(result.iterations, expected.iterations);
         // The starts themselves (no Newton step): the turned one is far closer to the minimum.
-        plainOptions.maximumIterations = 0;
-        turnedOptions.maximumIterations = 0;
-        const double plainStart = ReducedNewtonSolver(*c.problem, plainOptions).solve(prescribed).energy;
-        const double turnedStart = ReducedNewtonSolver(*c.problem, turnedOptions).solve(prescribed).energy;
+        options.maximumIterations = 0;
+        const auto [plainStartSolve, turnedStartSolve] = plainAndTurnedSolves(*c.problem, options, prescribed);
+        const double plainStart = plainStartSolve.energy, turnedStart = turnedStartSolve.energy;
         // Measured: the energy above the minimum (88.71) at the plain start 94.6 (direct) and 124.9
         // (one cycle), at the turned start 11.3 for both.
         EXPECT_LT(turnedStart - expected.energy, 0.25 * (plainStart - expected.energy)) << static_cast<int>(kind);
@@ -678,15 +684,9 @@ TEST(ReducedNewton, In3DTheTurnedStartOfARigidBoundaryMotionIsThatMotion)
     std::vector<Vector3> prescribed(c.points.size());
     for (int node = 0; node < c.problem->nodeCount(); ++node)
         if (!c.problem->isUnknown(node)) prescribed[node] = rigid(c.points[node]);
-    ReducedNewtonOptions plainOptions;
-    plainOptions.linearSolver = LinearSolverKind::direct;
-    plainOptions.turnedStart = false;
-    ReducedNewtonOptions turnedOptions = plainOptions;
-    turnedOptions.turnedStart = true;
-    ReducedNewtonSolver plain(*c.problem, plainOptions);
-    ReducedNewtonSolver turned(*c.problem, turnedOptions);
-    const RbmResult expected = plain.solve(prescribed);
-    const RbmResult result = turned.solve(prescribed);
+    ReducedNewtonOptions options;
+    options.linearSolver = LinearSolverKind::direct;
+    const auto [expected, result] = plainAndTurnedSolves(*c.problem, options, prescribed);
     ASSERT_TRUE(expected.converged) << expected.reason;
     ASSERT_TRUE(result.converged) << result.reason;
     EXPECT_GT(expected.iterations, 0);
@@ -718,25 +718,15 @@ TEST(ReducedNewton, In3DOnAGradedMeshTheCycleReachesTheFactorisedMinimumWithAndW
             for (int i = 0; i <= nx; ++i)
                 points.push_back({(std::pow(ratio, i) - 1.0) / (std::pow(ratio, nx) - 1.0), double(j) / ny, 0.1 * k});
     const int nodeCount = static_cast<int>(points.size());
-    std::vector<std::vector<int>> neighbours(nodeCount);
+    std::vector<std::vector<int>> cells;
     for (int j = 0; j < ny; ++j)
         for (int i = 0; i < nx; ++i) {
-            std::vector<int> cell;
+            std::vector<int>& cell = cells.emplace_back();
             for (int k = 0; k < 2; ++k)
                 for (int dj = 0; dj < 2; ++dj)
                     for (int di = 0; di < 2; ++di) cell.push_back(index(i + di, j + dj, k));
-            for (int a : cell)
-                for (int b : cell)
-                    if (a != b) neighbours[a].push_back(b);
         }
-    CellNeighbourGraph graph;
-    graph.offsets.assign(1, 0);
-    for (std::vector<int>& list : neighbours) {
-        std::sort(list.begin(), list.end());
-        list.erase(std::unique(list.begin(), list.end()), list.end());
-        graph.neighbours.insert(graph.neighbours.end(), list.begin(), list.end());
-        graph.offsets.push_back(static_cast<Label>(graph.neighbours.size()));
-    }
+    const CellNeighbourGraph graph = graphOfCells(nodeCount, cells);
     for (const bool symmetryPlanes : {true, false}) {
         std::vector<NodeConstraint> constraints(nodeCount);
         std::vector<Vector3> prescribed(nodeCount);

@@ -10,6 +10,7 @@
 #include "ThreadCount.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cstdio>
 #include <cstdlib>
 #include <cmath>
@@ -31,6 +32,42 @@ double dotProduct(std::span<const double> a, std::span<const double> b)
 }
 
 double euclideanNorm(std::span<const double> a) { return std::sqrt(dotProduct(a, a)); }
+
+// Preconditioned conjugate gradients on A x = b from x = 0 to ‖r‖ ≤ relativeTolerance ‖b‖:
+// multiply(p, q) sets q = A p, precondition(r, z) sets z = M⁻¹ r. False on a direction of
+// non-positive curvature, or when maximumIterations do not reach the tolerance. work: four
+// vectors, resized here (kept by a caller that solves often).
+template <typename Multiply, typename Precondition>
+bool conjugateGradients(Multiply&& multiply, Precondition&& precondition, std::span<const double> b, std::span<double> x,
+                        double relativeTolerance, int maximumIterations, std::array<std::vector<double>, 4>& work)
+{
+    const std::size_t size = b.size();
+    auto& [r, z, p, q] = work;
+    for (std::vector<double>* vector : {&r, &z, &p, &q}) vector->resize(size);
+    std::copy(b.begin(), b.end(), r.begin());
+    std::fill(x.begin(), x.end(), 0.0);
+    const double target = relativeTolerance * euclideanNorm(r);
+    precondition(std::span<const double>(r), std::span<double>(z));
+    p = z;
+    double rz = dotProduct(r, z);
+    for (int iteration = 0;; ++iteration) {
+        if (euclideanNorm(r) <= target) return true;
+        if (iteration == maximumIterations) return false;
+        multiply(std::span<const double>(p), std::span<double>(q));
+        const double curvature = dotProduct(p, q);
+        if (!(curvature > 0.0)) return false;
+        const double alpha = rz / curvature;
+        for (std::size_t k = 0; k < size; ++k) {
+            x[k] += alpha * p[k];
+            r[k] -= alpha * q[k];
+        }
+        precondition(std::span<const double>(r), std::span<double>(z));
+        const double next = dotProduct(r, z);
+        const double beta = next / rz;
+        rz = next;
+        for (std::size_t k = 0; k < size; ++k) p[k] = z[k] + beta * p[k];
+    }
+}
 
 } // namespace
 
@@ -323,27 +360,11 @@ bool ReducedNewtonSolver::projectedCycleSolve(std::span<const double> r, std::sp
     const int m = problem_.unknownNodeCount();
     const int dim = problem_.dimension();
     const BlockPattern& pattern = problem_.blockPattern();
-    const std::size_t size = r.size();
-    std::vector<double>& residual = cycleResidual_;
-    std::vector<double>& w = cyclePreconditioned_;
-    std::vector<double>& p = cycleDirection_;
-    std::vector<double>& q = cycleProduct_;
-    for (std::vector<double>* work : {&residual, &w, &p, &q}) work->resize(size);
-    std::copy(r.begin(), r.end(), residual.begin());
-    problem_.projectSliding(residual, dim);
-    std::fill(z.begin(), z.end(), 0.0);
-    const double target = relativeTolerance * euclideanNorm(residual);
-    // w = P C P residual (residual is projected already).
-    auto cycle = [&] {
-        threeVectorCycle_->apply(residual, w);
-        problem_.projectSliding(w, dim);
-    };
-    cycle();
-    p = w;
-    double rw = dotProduct(residual, w);
-    for (int iteration = 0; euclideanNorm(residual) > target; ++iteration) {
-        if (iteration == maximumIterations) return false;
-        // q = P (K ⊗ I) p (p is projected).
+    // Every vector of the iteration stays on the sliding planes: b = P r, q = P (K ⊗ I) p,
+    // z = P C r.
+    projected_.assign(r.begin(), r.end());
+    problem_.projectSliding(projected_, dim);
+    auto multiply = [&](std::span<const double> p, std::span<double> q) {
 #pragma omp parallel for schedule(static) if (worthThreading(pattern.columns.size()))
         for (int a = 0; a < m; ++a) {
             double sum[3] = {0.0, 0.0, 0.0};
@@ -353,20 +374,12 @@ bool ReducedNewtonSolver::projectedCycleSolve(std::span<const double> r, std::sp
             for (int c = 0; c < dim; ++c) q[static_cast<std::size_t>(a) * dim + c] = sum[c];
         }
         problem_.projectSliding(q, dim);
-        const double curvature = dotProduct(p, q);
-        if (!(curvature > 0.0)) return false;
-        const double alpha = rw / curvature;
-        for (std::size_t k = 0; k < size; ++k) {
-            z[k] += alpha * p[k];
-            residual[k] -= alpha * q[k];
-        }
-        cycle();
-        const double next = dotProduct(residual, w);
-        const double beta = next / rw;
-        rw = next;
-        for (std::size_t k = 0; k < size; ++k) p[k] = w[k] + beta * p[k];
-    }
-    return true;
+    };
+    auto cycle = [&](std::span<const double> residual, std::span<double> result) {
+        threeVectorCycle_->apply(residual, result);
+        problem_.projectSliding(result, dim);
+    };
+    return conjugateGradients(multiply, cycle, projected_, z, relativeTolerance, maximumIterations, cycleWork_);
 }
 
 double ReducedNewtonSolver::largestRelativeDisplacement(std::span<const double> v) const
@@ -557,19 +570,13 @@ bool ReducedNewtonSolver::harmonicShare(std::span<const double> b, std::span<dou
     const BlockPattern& pattern = problem_.blockPattern();
     const int m = problem_.unknownNodeCount();
     const std::size_t size = static_cast<std::size_t>(m);
-    std::vector<double> r(b.begin(), b.end()), z(size), p(size), q(size), in(3 * size, 0.0), out(3 * size);
+    std::vector<double> in(3 * size, 0.0), out(3 * size);
     auto cycle = [&](std::span<const double> residual, std::span<double> result) {
         for (std::size_t a = 0; a < size; ++a) in[3 * a] = residual[a];
         threeVectorCycle_->apply(in, out);
         for (std::size_t a = 0; a < size; ++a) result[a] = out[3 * a];
     };
-    std::fill(s.begin(), s.end(), 0.0);
-    const double target = harmonicShareTolerance * euclideanNorm(r);
-    cycle(r, z);
-    p = z;
-    double rz = dotProduct(r, z);
-    for (int iteration = 0; iteration < maximumIterations; ++iteration) {
-        if (euclideanNorm(r) <= target) return true;
+    auto multiply = [&](std::span<const double> p, std::span<double> q) {
 #pragma omp parallel for schedule(static) if (worthThreading(pattern.columns.size()))
         for (int a = 0; a < m; ++a) {
             double sum = 0.0;
@@ -577,20 +584,9 @@ bool ReducedNewtonSolver::harmonicShare(std::span<const double> b, std::span<dou
                 sum += laplacian_[position] * p[pattern.columns[position]];
             q[a] = sum;
         }
-        const double curvature = dotProduct(p, q);
-        if (!(curvature > 0.0)) return false;
-        const double alpha = rz / curvature;
-        for (std::size_t a = 0; a < size; ++a) {
-            s[a] += alpha * p[a];
-            r[a] -= alpha * q[a];
-        }
-        cycle(r, z);
-        const double next = dotProduct(r, z);
-        const double beta = next / rz;
-        rz = next;
-        for (std::size_t a = 0; a < size; ++a) p[a] = z[a] + beta * p[a];
-    }
-    return euclideanNorm(r) <= target;
+    };
+    std::array<std::vector<double>, 4> work;
+    return conjugateGradients(multiply, cycle, b, s, harmonicShareTolerance, maximumIterations, work);
 }
 
 RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplacement, const RbmState* initialGuess)

@@ -167,7 +167,7 @@ private:
     std::vector<double> componentIn_, componentOut_, projected_;
     std::vector<double> inverseShortestEdge_;  // per unknown node, for displacementTolerance
     std::vector<double> cgResidual_, cgPreconditioned_, cgPreviousPreconditioned_, cgDirection_, cgProduct_;
-    std::vector<double> cycleResidual_, cyclePreconditioned_, cycleDirection_, cycleProduct_;  // projectedCycleSolve
+    std::array<std::vector<double>, 4> cycleWork_;  // projectedCycleSolve's conjugate gradients
 };
 
 } // namespace rbm::motion
