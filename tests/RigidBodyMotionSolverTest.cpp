@@ -1090,6 +1090,33 @@ TEST(RigidBodyMotionSolverTimeSteps, WarmStartsStayCheapOnABoundaryLayerMesh)
     }
 }
 
+TEST(RigidBodyMotionSolverTimeSteps, IterativeLaplacianReachesTheFactorisedStepOnTheBoundaryLayerAirfoil)
+{
+    // Issue 12 ("no trap in the options"): `linearSolver iterative` (or matrixFree, or the
+    // automatic fallback when K's factorisation does not fit in memory) with the default reduced
+    // Newton in 2D. K⁻¹ is then CG preconditioned by rbm's multigrid cycle of K, to
+    // laplacianRelativeTolerance. Before, one PCGAMG cycle stood for K⁻¹: on this mesh (aspect
+    // ratio ~780, weights 1/|d|² up to ~5e10) the harmonic start was garbage and Newton stalled
+    // (steps of 1e-15, no result after minutes). The 4° step must end where the factorised one
+    // ends, within the displacement tolerance's bound of each point's shortest edge.
+    const PolyMesh& mesh = airfoilMesh();
+    const std::vector<double> shortestEdge = shortestEdgeAtEachPoint(mesh);
+    auto factorised = makeSolver(mesh, "subSteps 1;");
+    auto iterative = makeSolver(mesh, "subSteps 1; linearSolver iterative;");
+    const AirfoilRun expected = turnAirfoil(*factorised, 4.0);
+    const AirfoilRun result = turnAirfoil(*iterative, 4.0);
+    ASSERT_TRUE(expected.report.converged) << expected.report.reason;
+    ASSERT_TRUE(result.report.converged) << result.report.reason;
+    EXPECT_EQ(result.report.invertedCellCount, 0);
+    EXPECT_LE(result.report.iterations, 8);
+    double largestRelative = 0.0;
+    const std::vector<Vector3> a = factorised->curPoints();
+    const std::vector<Vector3> b = iterative->curPoints();
+    for (std::size_t i = 0; i < a.size(); ++i) largestRelative = std::max(largestRelative, norm(a[i] - b[i]) / shortestEdge[i]);
+    // Measured: 5 Newton steps (factorised 4), within 8.6e-6 of each point's shortest edge.
+    EXPECT_LT(largestRelative, 50e-6);
+}
+
 TEST(RigidBodyMotionSolverTimeSteps, WarmStartsWithTheDefaultStiffeningEndWhereColdSolvesEnd)
 {
     // The same series with the default stiffening. Its factors fall to (h_min/d)^0.8 ≈ 1e-5 in

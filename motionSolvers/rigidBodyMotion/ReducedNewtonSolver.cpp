@@ -173,7 +173,12 @@ ReducedNewtonSolver::ReducedNewtonSolver(const RbmProblem& problem, ReducedNewto
     // (docs/motionSolver.md, "Reduced Newton"). One cycle alone (no inner CG) was too rough there
     // an estimate of K⁻¹ for the start and the displacement test: it stopped 7.9e-4 chord from
     // the minimum.
-    if (dim == 3 && laplacianIterative) {
+    // In 2D (K iterative: `linearSolver iterative` or `matrixFree`, or a factorisation that
+    // does not fit) K ⊗ I is solved the same way, by CG + the cycle to laplacianRelativeTolerance:
+    // one cycle alone — before, one PCGAMG cycle — was no K⁻¹ on a boundary-layer mesh: on the
+    // benchmark's airfoil the start's energy was 7.6e9 instead of 4, and Newton stalled with
+    // steps of 1e-15 (more than 300 s, no result); now 7.6 s, the default's minimum.
+    if (laplacianIterative) {
         PetscBool inner = PETSC_FALSE;
         RBM_CHECK_PETSC(PetscOptionsHasName(nullptr, "rbm_reduced_", "-inner_solve", &inner));
         if (!inner) threeVectorCycle_ = ThreeVectorMultigrid::build(pattern.rowOffsets, pattern.columns, laplacian_, "reduced");
@@ -327,7 +332,7 @@ bool ReducedNewtonSolver::precondition(std::span<const double> r, std::span<doub
     if (threeVectorCycle_) {
         // One V-cycle on the three components at once (ThreeVectorMultigrid.hpp); with sliding
         // nodes, CG on the projected K ⊗ I preconditioned by it.
-        if (!vectorSystem_) {
+        if (!vectorSystem_ && dim == 3) {
             threeVectorCycle_->apply(r, z);
             return true;
         }
@@ -376,7 +381,17 @@ bool ReducedNewtonSolver::projectedCycleSolve(std::span<const double> r, std::sp
         problem_.projectSliding(q, dim);
     };
     auto cycle = [&](std::span<const double> residual, std::span<double> result) {
-        threeVectorCycle_->apply(residual, result);
+        if (dim == 3) {
+            threeVectorCycle_->apply(residual, result);
+        } else {  // the cycle takes three components: the third zero
+            planarIn_.resize(3 * static_cast<std::size_t>(m), 0.0);
+            planarOut_.resize(3 * static_cast<std::size_t>(m));
+            for (int a = 0; a < m; ++a)
+                for (int c = 0; c < 2; ++c) planarIn_[3 * static_cast<std::size_t>(a) + c] = residual[2 * static_cast<std::size_t>(a) + c];
+            threeVectorCycle_->apply(planarIn_, planarOut_);
+            for (int a = 0; a < m; ++a)
+                for (int c = 0; c < 2; ++c) result[2 * static_cast<std::size_t>(a) + c] = planarOut_[3 * static_cast<std::size_t>(a) + c];
+        }
         problem_.projectSliding(result, dim);
     };
     return conjugateGradients(multiply, cycle, projected_, z, relativeTolerance, maximumIterations, cycleWork_);

@@ -134,8 +134,9 @@ private:
     // s = K⁻¹ b for one scalar right-hand side (the turned start's share of the body's motion):
     // K's factor, or CG preconditioned by the 3D cycle to a loose tolerance. False if CG failed.
     bool harmonicShare(std::span<const double> b, std::span<double> s);
-    // 3D with sliding nodes: z = (P (K ⊗ I) P)⁻¹ P r by CG preconditioned by the cycle of the
-    // scalar K between projections, to relativeTolerance. False if CG failed.
+    // z = (P (K ⊗ I) P)⁻¹ P r by CG preconditioned by the cycle of the scalar K between
+    // projections, to relativeTolerance (3D with sliding nodes; 2D with K iterative). False if
+    // CG failed.
     bool projectedCycleSolve(std::span<const double> r, std::span<double> z, double relativeTolerance);
     // max over unknown nodes of |v_node| / (the node's shortest edge), v compact.
     double largestRelativeDisplacement(std::span<const double> v) const;
@@ -168,6 +169,7 @@ private:
     std::vector<double> inverseShortestEdge_;  // per unknown node, for displacementTolerance
     std::vector<double> cgResidual_, cgPreconditioned_, cgPreviousPreconditioned_, cgDirection_, cgProduct_;
     std::array<std::vector<double>, 4> cycleWork_;  // projectedCycleSolve's conjugate gradients
+    std::vector<double> planarIn_, planarOut_;       // 2D vectors padded to the cycle's three components
 };
 
 } // namespace rbm::motion
