@@ -1092,9 +1092,9 @@ TEST(RigidBodyMotionSolverTimeSteps, WarmStartsStayCheapOnABoundaryLayerMesh)
 
 TEST(RigidBodyMotionSolverTimeSteps, IterativeLaplacianReachesTheFactorisedStepOnTheBoundaryLayerAirfoil)
 {
-    // Issue 12 ("no trap in the options"): `linearSolver iterative` (or matrixFree, or the
-    // automatic fallback when K's factorisation does not fit in memory) with the default reduced
-    // Newton in 2D. K⁻¹ is then CG preconditioned by rbm's multigrid cycle of K, to
+    // Issue 12 ("no trap in the options"): `linearSolver iterative` (or matrixFree; what
+    // rbmMoveMesh suggests when K's factorisation does not fit in memory) with the default
+    // reduced Newton in 2D. K⁻¹ is then CG preconditioned by rbm's multigrid cycle of K, to
     // laplacianRelativeTolerance. Before, one PCGAMG cycle stood for K⁻¹: on this mesh (aspect
     // ratio ~780, weights 1/|d|² up to ~5e10) the harmonic start was garbage and Newton stalled
     // (steps of 1e-15, no result after minutes). The 4° step must end where the factorised one

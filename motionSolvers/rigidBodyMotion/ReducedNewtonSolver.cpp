@@ -173,8 +173,8 @@ ReducedNewtonSolver::ReducedNewtonSolver(const RbmProblem& problem, ReducedNewto
     // (docs/motionSolver.md, "Reduced Newton"). One cycle alone (no inner CG) was too rough there
     // an estimate of K⁻¹ for the start and the displacement test: it stopped 7.9e-4 chord from
     // the minimum.
-    // In 2D (K iterative: `linearSolver iterative` or `matrixFree`, or a factorisation that
-    // does not fit) K ⊗ I is solved the same way, by CG + the cycle to laplacianRelativeTolerance:
+    // In 2D (K iterative: `linearSolver iterative` or `matrixFree`, which rbmMoveMesh suggests
+    // when K's factorisation does not fit in memory) K ⊗ I is solved the same way, by CG + the cycle to laplacianRelativeTolerance:
     // one cycle alone — before, one PCGAMG cycle — was no K⁻¹ on a boundary-layer mesh: on the
     // benchmark's airfoil the start's energy was 7.6e9 instead of 4, and Newton stalled with
     // steps of 1e-15 (more than 300 s, no result); now 7.6 s, the default's minimum.
