@@ -1,6 +1,7 @@
 #include "MatrixFreeLinearizedSystem.hpp"
 
 #include "BlockRowLayout.hpp"
+#include "ThreeVectorMultigrid.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -86,18 +87,28 @@ MatrixFreeLinearizedSystem::MatrixFreeLinearizedSystem(const RbmProblem& problem
     const BlockPattern& pattern = problem.blockPattern();
     const std::vector<PetscInt> rowOffsets(pattern.rowOffsets.begin(), pattern.rowOffsets.end());
     const std::vector<PetscInt> columns(pattern.columns.begin(), pattern.columns.end());
-    const std::vector<double> values = operator_.displacementLaplacianValues();
-    RBM_CHECK_PETSC(MatCreate(PETSC_COMM_SELF, laplacian_.out()));
-    RBM_CHECK_PETSC(MatSetSizes(laplacian_, nodes, nodes, nodes, nodes));
-    RBM_CHECK_PETSC(MatSetType(laplacian_, MATSEQAIJ));
-    RBM_CHECK_PETSC(MatSeqAIJSetPreallocationCSR(laplacian_, rowOffsets.data(), columns.data(), values.data()));
-    RBM_CHECK_PETSC(MatSetOption(laplacian_, MAT_SPD, PETSC_TRUE));
-    RBM_CHECK_PETSC(PCCreate(PETSC_COMM_SELF, laplacianPreconditioner_.out()));
-    RBM_CHECK_PETSC(PCSetOperators(laplacianPreconditioner_, laplacian_, laplacian_));
-    RBM_CHECK_PETSC(PCSetType(laplacianPreconditioner_, PCGAMG));
-    RBM_CHECK_PETSC(PCSetOptionsPrefix(laplacianPreconditioner_, "rbm_linearized_mf_"));
-    RBM_CHECK_PETSC(PCSetFromOptions(laplacianPreconditioner_));
-    RBM_CHECK_PETSC(PCSetUp(laplacianPreconditioner_));
+    laplacianValues_ = operator_.displacementLaplacianValues();
+    // rbm's cycle (ThreeVectorMultigrid: its smoothed-aggregation hierarchy, symmetric Chebyshev
+    // smoothing, so a symmetric positive definite preconditioner), unless the options choose
+    // another preconditioner under rbm_linearized_mf_ (then PETSc's, one PCApply per
+    // component). PCGAMG's cycle was not positive definite on the boundary-layer airfoil with
+    // the default stiffening: CG stopped with DIVERGED_INDEFINITE_PC, 214 inverted cells after
+    // 6 sub-step splits (docs/motionSolver.md, "Linear solvers").
+    cycle_ = ThreeVectorMultigrid::build(pattern.rowOffsets, pattern.columns, laplacianValues_, "linearized_mf");
+    if (!cycle_) {
+        RBM_CHECK_PETSC(MatCreate(PETSC_COMM_SELF, laplacian_.out()));
+        RBM_CHECK_PETSC(MatSetSizes(laplacian_, nodes, nodes, nodes, nodes));
+        RBM_CHECK_PETSC(MatSetType(laplacian_, MATSEQAIJ));
+        RBM_CHECK_PETSC(
+            MatSeqAIJSetPreallocationCSR(laplacian_, rowOffsets.data(), columns.data(), laplacianValues_.data()));
+        RBM_CHECK_PETSC(MatSetOption(laplacian_, MAT_SPD, PETSC_TRUE));
+        RBM_CHECK_PETSC(PCCreate(PETSC_COMM_SELF, laplacianPreconditioner_.out()));
+        RBM_CHECK_PETSC(PCSetOperators(laplacianPreconditioner_, laplacian_, laplacian_));
+        RBM_CHECK_PETSC(PCSetType(laplacianPreconditioner_, PCGAMG));
+        RBM_CHECK_PETSC(PCSetOptionsPrefix(laplacianPreconditioner_, "rbm_linearized_mf_"));
+        RBM_CHECK_PETSC(PCSetFromOptions(laplacianPreconditioner_));
+        RBM_CHECK_PETSC(PCSetUp(laplacianPreconditioner_));
+    }
 
     // S as a shell, CG preconditioned by the Laplacian per component.
     RBM_CHECK_PETSC(MatCreateShell(PETSC_COMM_SELF, size, size, size, size, this, shell_.out()));
@@ -155,10 +166,28 @@ void MatrixFreeLinearizedSystem::precondition(Vec x, Vec y)
         projectSliding(projected_);
         input = projected_;
     }
-    for (int component = 0; component < dimension; ++component) {
-        RBM_CHECK_PETSC(VecStrideGather(input, component, componentIn_, INSERT_VALUES));
-        RBM_CHECK_PETSC(PCApply(laplacianPreconditioner_, componentIn_, componentOut_));
-        RBM_CHECK_PETSC(VecStrideScatter(componentOut_, component, y, INSERT_VALUES));
+    if (cycle_) {
+        // All components in one cycle (a 2D vector padded with a zero third component).
+        const std::size_t nodes = static_cast<std::size_t>(problem_.unknownNodeCount());
+        cycleIn_.resize(3 * nodes, 0.0);
+        cycleOut_.resize(3 * nodes);
+        const PetscScalar* in = nullptr;
+        RBM_CHECK_PETSC(VecGetArrayRead(input, &in));
+        for (std::size_t a = 0; a < nodes; ++a)
+            for (int c = 0; c < dimension; ++c) cycleIn_[3 * a + c] = in[a * dimension + c];
+        RBM_CHECK_PETSC(VecRestoreArrayRead(input, &in));
+        cycle_->apply(cycleIn_, cycleOut_);
+        PetscScalar* out = nullptr;
+        RBM_CHECK_PETSC(VecGetArrayWrite(y, &out));
+        for (std::size_t a = 0; a < nodes; ++a)
+            for (int c = 0; c < dimension; ++c) out[a * dimension + c] = cycleOut_[3 * a + c];
+        RBM_CHECK_PETSC(VecRestoreArrayWrite(y, &out));
+    } else {
+        for (int component = 0; component < dimension; ++component) {
+            RBM_CHECK_PETSC(VecStrideGather(input, component, componentIn_, INSERT_VALUES));
+            RBM_CHECK_PETSC(PCApply(laplacianPreconditioner_, componentIn_, componentOut_));
+            RBM_CHECK_PETSC(VecStrideScatter(componentOut_, component, y, INSERT_VALUES));
+        }
     }
     if (problem_.hasSlidingNodes()) projectSliding(y);
 }

@@ -3,8 +3,9 @@
 // matrixFree`, and the automatic choice for large 3D problems on one rank): conjugate
 // gradients on the reduced system S u = −∇E_reduced (ReducedLinearizedOperator.hpp, the
 // rotations eliminated node by node), S applied by a PETSc shell matrix, preconditioned by
-// algebraic multigrid (GAMG) on the scalar displacement Laplacian H_uu, one V-cycle per
-// displacement component.
+// one V-cycle of algebraic multigrid on the scalar displacement Laplacian H_uu for all
+// displacement components at once (ThreeVectorMultigrid, rbm's smoothed aggregation; with
+// -rbm_linearized_mf_pc_type … PETSc's preconditioner, one application per component).
 //
 // Why: the assembled 3D Hessian holds 36 values per graph edge (hexahedral meshes: 27 blocks
 // per row, 7.8 KB per node, 20 KB with multigrid's copies), 20 GiB for 10^6 cells. The shell
@@ -19,7 +20,9 @@
 
 #include "PetscSupport.hpp"
 #include "ReducedLinearizedOperator.hpp"
+#include "ThreeVectorMultigrid.hpp"
 
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -52,7 +55,7 @@ public:
 
     // y = P S P x (P: the sliding projection); the shell's multiplication.
     void multiply(std::span<const double> x, std::span<double> y) const;
-    // y = P B P x, B: one multigrid cycle of the Laplacian per component; the shell's preconditioner.
+    // y = P B P x, B: one multigrid cycle of the Laplacian on every component; the shell's preconditioner.
     void precondition(Vec x, Vec y);
 
 private:
@@ -61,6 +64,9 @@ private:
     const RbmProblem& problem_;
     ReducedLinearizedOperator operator_;
     InheritedOptions options_;
+    std::vector<double> laplacianValues_;          // H_uu in the block pattern (the cycle references it)
+    std::unique_ptr<ThreeVectorMultigrid> cycle_;  // rbm's cycle of H_uu (else PETSc's PC below)
+    std::vector<double> cycleIn_, cycleOut_;       // the cycle's three-component vectors
     PetscMat laplacian_;
     PetscPc laplacianPreconditioner_;
     PetscMat shell_;
