@@ -205,7 +205,10 @@ ReducedNewtonSolver::ReducedNewtonSolver(const RbmProblem& problem, ReducedNewto
     if (!system_->isDirect()) {
         PetscBool inner = PETSC_FALSE;
         RBM_CHECK_PETSC(PetscOptionsHasName(nullptr, "rbm_reduced_", "-inner_solve", &inner));
-        laplacianByCycle_ = !inner;
+        // One PETSc cycle as K⁻¹ only in 3D: in 2D (here with -parallel, or with the options'
+        // own preconditioner) one PCGAMG cycle was no K⁻¹ on a boundary-layer mesh (see above),
+        // so K ⊗ I is solved to laplacianRelativeTolerance.
+        laplacianByCycle_ = !inner && dim == 3;
     }
     componentIn_.resize(problem.unknownNodeCount());
     componentOut_.resize(problem.unknownNodeCount());
