@@ -169,15 +169,16 @@ ReducedNewtonSolver::ReducedNewtonSolver(const RbmProblem& problem, ReducedNewto
     // planes, preconditions CG on the projected K ⊗ I, solved to laplacianRelativeTolerance
     // (projectedCycleSolve). Before, PETSc's CG + GAMG on the projected K ⊗ I: on the
     // boundary-layer airfoil solved in 3D between two symmetry planes, about 350 iterations per
-    // application of K⁻¹ and 40 s for the step; now about 11 and 6.9 s, the same minimum
+    // application of K⁻¹ and 40 s for the step; now about 11 and 5.9 s, the same minimum
     // (docs/motionSolver.md, "Reduced Newton"). One cycle alone (no inner CG) was too rough there
     // an estimate of K⁻¹ for the start and the displacement test: it stopped 7.9e-4 chord from
     // the minimum.
     // In 2D (K iterative: `linearSolver iterative` or `matrixFree`, which rbmMoveMesh suggests
-    // when K's factorisation does not fit in memory) K ⊗ I is solved the same way, by CG + the cycle to laplacianRelativeTolerance:
-    // one cycle alone — before, one PCGAMG cycle — was no K⁻¹ on a boundary-layer mesh: on the
-    // benchmark's airfoil the start's energy was 7.6e9 instead of 4, and Newton stalled with
-    // steps of 1e-15 (more than 300 s, no result); now 7.6 s, the default's minimum.
+    // when K's factorisation does not fit in memory) K ⊗ I is solved the same way, by CG + the
+    // cycle to laplacianRelativeTolerance. One cycle alone (before: one PCGAMG cycle) was no K⁻¹
+    // on a boundary-layer mesh: on the benchmark's airfoil the start's energy was 7.6e9 instead
+    // of 4, and Newton stalled with steps of 1e-15 (more than 300 s, no result); now 1.3 s for
+    // the whole run, within 7.2e-7 chord of the factorised result.
     if (laplacianIterative) {
         PetscBool inner = PETSC_FALSE;
         RBM_CHECK_PETSC(PetscOptionsHasName(nullptr, "rbm_reduced_", "-inner_solve", &inner));
