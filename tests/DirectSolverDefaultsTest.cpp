@@ -92,6 +92,24 @@ int solveAndReadOrdering(int dimension)
     return static_cast<int>(ordering);
 }
 
+TEST(DirectSolverDefaults, PreonlyWithAMultigridPreconditionerIsNotDirect)
+{
+    // -rbm_<name>_pc_type gamg alone over the direct default keeps KSP preonly: one cycle, no
+    // factor to back-substitute with (the reduced Newton asked PETSc for one and stopped with
+    // "No method getfactoredmatrix for PC of type gamg"). The default is direct.
+    PathSystem path;
+    {
+        const BlockSystemSolver direct(path.rowOffsets, path.columns, blockSize, MatrixSymmetry::symmetricPositiveDefinite,
+                                       LinearSolverKind::direct, 2, 1e-12, "linearized");
+        EXPECT_TRUE(direct.isDirect());
+    }
+    RBM_CHECK_PETSC(PetscOptionsSetValue(nullptr, "-rbm_linearized_pc_type", "gamg"));
+    const BlockSystemSolver cycle(path.rowOffsets, path.columns, blockSize, MatrixSymmetry::symmetricPositiveDefinite,
+                                  LinearSolverKind::direct, 2, 1e-12, "linearized");
+    RBM_CHECK_PETSC(PetscOptionsClearValue(nullptr, "-rbm_linearized_pc_type"));
+    EXPECT_FALSE(cycle.isDirect());
+}
+
 #if defined(PETSC_HAVE_MUMPS)
 
 TEST(DirectSolverDefaults, TwoDimensionalSystemsUseAmfWhileTheSolverLives)

@@ -13,6 +13,7 @@
 #include "PointPatchDisplacement.hpp"
 #include "RbmEnergy.hpp"
 #include "RigidBodyMotionSolver.hpp"
+#include "ShortestEdges.hpp"
 
 #include <gtest/gtest.h>
 
@@ -159,6 +160,43 @@ TEST(ParallelSolve, ThreeDimensionalTwistWithSlidingSidesMatchesTheSerialSolve)
     expectSameOnAllRanks(mesh, "top", displacementOf, 1.0 / 6.0,
                          {"subSteps 1;", "formulation linearized; subSteps 1;", "coupling decoupled; subSteps 1;",
                           "linearSolver iterative; subSteps 1;"});
+}
+
+TEST(ParallelSolve, IterativeLaplacianOnTheBoundaryLayerAirfoilReachesTheSerialFactorisedStep)
+{
+    // Issue 12 ("no trap in the options"): the default reduced Newton in 2D with `linearSolver
+    // iterative` on several ranks, where rbm's own multigrid cycle (one rank's) is not there
+    // and PETSc's CG solves K. With GAMG that CG did not converge on a boundary-layer mesh (the
+    // benchmark's airfoil: DIVERGED_LINEAR_SOLVE, exit 1); BoomerAMG is the default there now.
+    // The NACA4415 fixture with a hex boundary layer (aspect ratio ~780), the airfoil turned 4°
+    // about its trailing edge: the distributed step must end where the serial factorised one
+    // ends, within the displacement tolerance's bound of each point's shortest edge.
+    if (worldSize() == 1) GTEST_SKIP() << "needs mpiexec -n 2";
+    const PolyMesh mesh =
+        io::readPolyMesh(std::filesystem::path(RBM_TEST_DATA_DIR) / "airfoilBoundaryLayer" / "constant" / "polyMesh");
+    const Matrix3 turn = rotationFromVector({0.0, 0.0, 4.0 * M_PI / 180.0});
+    const Vector3 trailingEdge{1.0, 0.0, 0.0};
+    auto displacementOf = [&](const Vector3& x) {
+        Vector3 relative = x - trailingEdge;
+        relative.z = 0.0;
+        Vector3 moved = turn * relative - relative;
+        moved.z = 0.0;
+        return moved;
+    };
+    const Solved serial = solveOn(PETSC_COMM_SELF, mesh, "subSteps 1;", "airfoil", displacementOf);
+    const Solved distributed =
+        solveOn(PETSC_COMM_WORLD, mesh, "subSteps 1; linearSolver iterative;", "airfoil", displacementOf);
+    ASSERT_TRUE(serial.report.converged) << serial.report.reason;
+    ASSERT_TRUE(distributed.report.converged) << distributed.report.reason;
+    EXPECT_EQ(distributed.report.invertedCellCount, 0);
+    const std::vector<double> shortestEdge = rbm::test::shortestEdgeAtEachPoint(mesh);
+    double largestRelative = 0.0;
+    for (std::size_t i = 0; i < serial.points.size(); ++i)
+        largestRelative = std::max(largestRelative, norm(serial.points[i] - distributed.points[i]) / shortestEdge[i]);
+    // As the one-rank iterative K (RigidBodyMotionSolverTimeSteps.IterativeLaplacian…): the
+    // two stops lie within a few times displacementTolerance (1e-6) of each shortest edge.
+    EXPECT_LT(largestRelative, 50e-6);
+    EXPECT_GT(largestDifference(serial.points, mesh.points), 0.01);  // the turn moved the mesh
 }
 
 // The program end to end: `mpiexec -n 2 rbmMoveMesh -case C -parallel` (moveMeshMain on

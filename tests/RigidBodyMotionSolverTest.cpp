@@ -20,6 +20,7 @@
 #include "QualityReport.hpp"
 #include "RbmEnergy.hpp"
 #include "RigidBodyMotionSolver.hpp"
+#include "ShortestEdges.hpp"
 #include "Stiffening.hpp"
 #include "SubStepping.hpp"
 
@@ -977,22 +978,7 @@ const PolyMesh& airfoilMesh()
     return mesh;
 }
 
-// The shortest face edge at every point of the mesh.
-std::vector<double> shortestEdgeAtEachPoint(const PolyMesh& mesh)
-{
-    std::vector<double> shortestEdge(mesh.pointCount(), std::numeric_limits<double>::infinity());
-    for (Label f = 0; f < mesh.faceCount(); ++f) {
-        const auto face = mesh.face(f);
-        for (std::size_t k = 0; k < face.size(); ++k) {
-            const Label a = face[k];
-            const Label b = face[(k + 1) % face.size()];
-            const double length = norm(mesh.points[a] - mesh.points[b]);
-            shortestEdge[a] = std::min(shortestEdge[a], length);
-            shortestEdge[b] = std::min(shortestEdge[b], length);
-        }
-    }
-    return shortestEdge;
-}
+using rbm::test::shortestEdgeAtEachPoint;
 
 struct AirfoilRun {
     MotionSolveReport report;

@@ -425,7 +425,14 @@ BlockSystemSolver::BlockSystemSolver(std::span<const int> rowOffsets, std::span<
     RBM_CHECK_PETSC(KSPGetType(ksp_, &type));
     PetscBool preonly = PETSC_FALSE;
     RBM_CHECK_PETSC(PetscStrcmp(type, KSPPREONLY, &preonly));
-    direct_ = preonly == PETSC_TRUE;
+    // Direct: one application of a factorisation. `preonly` with another preconditioner
+    // (e.g. -rbm_reduced_pc_type gamg alone, over the direct default's preonly) is one cycle,
+    // not a factor to back-substitute with (before, the reduced Newton asked PETSc for the
+    // factor and stopped with "No method getfactoredmatrix for PC of type gamg").
+    PC pc = nullptr;
+    RBM_CHECK_PETSC(KSPGetPC(ksp_, &pc));
+    const PetscObject pcObject = reinterpret_cast<PetscObject>(pc);
+    direct_ = preonly == PETSC_TRUE && (isType(pcObject, PCLU) || isType(pcObject, PCCHOLESKY));
 }
 
 BlockSystemSolver::~BlockSystemSolver() = default;

@@ -179,6 +179,23 @@ ReducedNewtonSolver::ReducedNewtonSolver(const RbmProblem& problem, ReducedNewto
     // on a boundary-layer mesh: on the benchmark's airfoil the start's energy was 7.6e9 instead
     // of 4, and Newton stalled with steps of 1e-15 (more than 300 s, no result); now 1.3 s for
     // the whole run, within 7.2e-7 chord of the factorised result.
+#if defined(PETSC_HAVE_HYPRE)
+    // 2D, K solved iteratively on several ranks (rbm's own cycle is one rank's): PETSc's CG with
+    // hypre's BoomerAMG by default instead of GAMG. K is a weighted graph Laplacian, an
+    // M-matrix, the case classical AMG is made for, and on a boundary-layer mesh its weights
+    // span many orders (1/|d|², wall cells of aspect ratio ~870). There GAMG's smoothed
+    // aggregation does not converge: on the benchmark's airfoil with `linearSolver iterative`
+    // and two ranks CG + GAMG stopped with DIVERGED_LINEAR_SOLVE and exit 1 after 11 s (also
+    // with -pc_gamg_threshold 0.02); CG + BoomerAMG: 1.6 s, 0 inverted cells, within 7.5e-7
+    // chord of the factorised run. In 3D (one cycle as K⁻¹) GAMG stays: on the 10⁵-cell
+    // twisted cube it took 2.3 s for the step against BoomerAMG's 3.6 s, and on the same
+    // airfoil solved in 3D between symmetry planes both took 21 s (docs/motionSolver.md,
+    // "Reduced Newton"). -rbm_reduced_pc_type gamg brings GAMG back.
+    if (ranks > 1 && !factorised && dim == 2) {
+        if (!laplacianOptions_) laplacianOptions_ = std::make_unique<InheritedOptions>("reduced");
+        laplacianOptions_->addDefault("pc_type", "hypre");
+    }
+#endif
     if (laplacianIterative) {
         PetscBool inner = PETSC_FALSE;
         RBM_CHECK_PETSC(PetscOptionsHasName(nullptr, "rbm_reduced_", "-inner_solve", &inner));

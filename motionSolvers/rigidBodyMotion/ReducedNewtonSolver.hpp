@@ -161,7 +161,7 @@ private:
     Mat factor_ = nullptr;                 // the factor inside system_'s PC (not owned)
     PetscMat components_, solutions_;      // dense m × dimension right-hand sides and solutions
     std::unique_ptr<ReducedHessian3D> hessian3D_;      // 3D: S from per-node data
-    std::unique_ptr<InheritedOptions> laplacianOptions_;  // rbm's defaults for the Laplacian's factorisation
+    std::unique_ptr<InheritedOptions> laplacianOptions_;  // rbm's defaults for K's solver in PETSc (CHOLMOD, BoomerAMG)
     // The last two results (node displacements), for the secant predictor of warm starts.
     std::vector<Vector3> lastSolution_, previousSolution_;
     // Work arrays (compact: dimension() entries per unknown node).
