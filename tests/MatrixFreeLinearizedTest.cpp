@@ -916,5 +916,54 @@ TEST(ReducedNewton, DisplacementToleranceStopsEarlyWithinItsBound)
     }
 }
 
+TEST(ReducedNewton, SubspaceOfPastCorrectionsSavesIterationsAndKeepsTheMinima)
+{
+    // A smooth series (the top's motion scaled by sin, warm-started from each result): from the
+    // fourth step on, the first step of every solve is the Galerkin step in the span of the
+    // last three Newton corrections (correctionMemory, the default). Solved to round-off, every
+    // step ends where the series without it ends (the minima do not move); with the default
+    // displacementTolerance, every node within 10 tolerances of the grid spacing of it, and
+    // with fewer CG iterations: the secant predictor misses by nearly the same field each step.
+    // Measured (10 steps): 2D 57 → 38 CG iterations, 3D 63 → 44 (to round-off 128 → 111 and
+    // 167 → 140, where the last Newton steps' CG to the rounding level dominates).
+    for (const auto& [dimension, mirror] : {std::pair{2, false}, {3, true}}) {
+        const GridCase c = gridCase(dimension, dimension == 2 ? 16 : 6, mirror, 31);
+        const std::vector<Vector3> top = largeTopMotion(c);
+        const double spacing = 1.0 / (dimension == 2 ? 16 : 6);
+        for (const bool toRoundOff : {true, false}) {
+            ReducedNewtonOptions without = toRoundOff ? roundOffOptions() : ReducedNewtonOptions{};
+            ReducedNewtonOptions with = without;
+            ASSERT_EQ(with.correctionMemory, 3);  // the default
+            without.correctionMemory = 0;
+            const double bound = toRoundOff ? 1e-8 : 10.0 * with.displacementTolerance * spacing;
+            ReducedNewtonSolver plain(*c.problem, without), recycling(*c.problem, with);
+            RbmResult plainState, recyclingState;
+            int plainIterations = 0, recyclingIterations = 0;
+            for (int step = 1; step <= 10; ++step) {
+                std::vector<Vector3> boundary = top;
+                for (Vector3& v : boundary) v = std::sin(0.15 * step) * v;
+                const RbmResult a = plain.solve(boundary, step == 1 ? nullptr : &plainState);
+                const RbmResult b = recycling.solve(boundary, step == 1 ? nullptr : &recyclingState);
+                ASSERT_TRUE(a.converged) << a.reason;
+                ASSERT_TRUE(b.converged) << b.reason;
+                EXPECT_LT(largestDifference(b.displacement, a.displacement), bound)
+                    << dimension << "D step " << step << (toRoundOff ? ", to round-off" : "");
+                if (toRoundOff) {
+                    EXPECT_NEAR(b.energy, a.energy, 1e-10 * a.energy) << dimension << "D step " << step;
+                }
+                plainIterations += a.linearIterations;
+                recyclingIterations += b.linearIterations;
+                plainState = a;
+                recyclingState = b;
+            }
+            std::printf("%dD%s: CG iterations %d without, %d with the subspace step\n", dimension,
+                        toRoundOff ? " to round-off" : "", plainIterations, recyclingIterations);
+            if (!toRoundOff) {
+                EXPECT_LT(recyclingIterations, 0.8 * plainIterations) << dimension << "D";
+            }
+        }
+    }
+}
+
 } // namespace
 } // namespace rbm::motion

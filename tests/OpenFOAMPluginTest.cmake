@@ -98,6 +98,13 @@ function(setCoefficients case entries)
   file(WRITE ${case}/constant/dynamicMeshDict "${text}")
 endfunction()
 
+# Adds one entry to the case's rigidBodyMotionSolverCoeffs, keeping the others.
+function(addCoefficient case entry)
+  file(READ ${case}/constant/dynamicMeshDict text)
+  string(REGEX REPLACE "(rigidBodyMotionSolverCoeffs[ \t\n]*{[^}]*)}" "\\1    ${entry}\n}" text "${text}")
+  file(WRITE ${case}/constant/dynamicMeshDict "${text}")
+endfunction()
+
 # The log line's figures before the wall time: "Time = 1 sub-steps ... inverted 0".
 function(stepFigures text time name)
   string(REGEX MATCH "Time = ${time} +sub-steps[^\n]*inverted [0-9]+" line "${text}")
@@ -170,6 +177,10 @@ elseif(MODE STREQUAL "restart")
   foreach(case ${rbmCase} ${pluginCase} ${restartCase})
     setControl(${case} endTime 0.15)
     setControl(${case} writeInterval 3)
+    # To round-off: a restart has no history for the warm start's predictor and subspace
+    # step, so with the default displacementTolerance the two runs stop at different points
+    # within it (8.8e-7 apart in the far field, 8.8e-6 of the 0.1 edges there).
+    addCoefficient(${case} "displacementTolerance 0;")
   endforeach()
   runIn(${rbmCase} 0 rbmMoveMesh ${RBM_MOVE_MESH} -noVTK)
   runIn(${pluginCase} 0 moveDynamicMesh moveDynamicMesh)

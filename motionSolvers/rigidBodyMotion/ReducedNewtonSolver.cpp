@@ -90,6 +90,11 @@ ReducedNewtonSolver::ReducedNewtonSolver(const RbmProblem& problem, ReducedNewto
         const double meanWeightedLength = graph.edgeCount() > 0 ? sum / graph.edgeCount() : 1.0;
         absoluteTolerance_ = 1e-11 * meanWeightedLength * std::sqrt(std::max(1, problem.unknownNodeCount()));
     }
+    {
+        PetscInt memory = options_.correctionMemory;
+        RBM_CHECK_PETSC(PetscOptionsGetInt(nullptr, "rbm_reduced_", "-correction_memory", &memory, nullptr));
+        options_.correctionMemory = std::max<int>(0, static_cast<int>(memory));
+    }
     // Only the displacement test needs the nodes' shortest edges.
     if (options.displacementTolerance > 0.0) inverseShortestEdge_.assign(problem.unknownNodeCount(), 0.0);
     for (int a = 0; a < static_cast<int>(inverseShortestEdge_.size()); ++a) {
@@ -625,6 +630,77 @@ bool ReducedNewtonSolver::harmonicShare(std::span<const double> b, std::span<dou
     return conjugateGradients(multiply, cycle, b, s, harmonicShareTolerance, maximumIterations, work);
 }
 
+int ReducedNewtonSolver::subspaceStep(std::vector<Vector3>& u, std::vector<Matrix3>& rotations, double& energy,
+                                      std::vector<double>& g, const TrialMove& moveAlong, std::vector<Vector3>& trial,
+                                      std::vector<Matrix3>& trialRotations, bool monitor)
+{
+    // An orthonormal basis of the corrections (modified Gram–Schmidt, sums in index order:
+    // the same for any thread count); nearly dependent ones are left out.
+    std::vector<std::vector<double>> basis;
+    for (const std::vector<double>& correction : recentCorrections_) {
+        std::vector<double> w = correction;
+        for (const std::vector<double>& q : basis) {
+            const double along = dotProduct(q, w);
+            for (std::size_t k = 0; k < w.size(); ++k) w[k] -= along * q[k];
+        }
+        const double length = euclideanNorm(w);
+        if (!(length > 1e-6 * euclideanNorm(correction))) continue;
+        for (double& value : w) value /= length;
+        basis.push_back(std::move(w));
+    }
+    const int k = static_cast<int>(basis.size());
+    if (k == 0) return 0;
+    // A = Wᵀ S W and b = −Wᵀ ∇Ẽ; A by Cholesky (k ≤ a few), given up unless positive definite.
+    prepareHessian(u, rotations);
+    std::vector<double> product(g.size());
+    std::vector<double> a(static_cast<std::size_t>(k) * k), b(static_cast<std::size_t>(k));
+    for (int j = 0; j < k; ++j) {
+        applyHessian(basis[j], product);
+        for (int i = 0; i < k; ++i) a[static_cast<std::size_t>(i) * k + j] = dotProduct(basis[i], product);
+        b[j] = -dotProduct(basis[j], g);
+    }
+    for (int i = 0; i < k; ++i)
+        for (int j = 0; j < i; ++j) a[static_cast<std::size_t>(i) * k + j] = a[static_cast<std::size_t>(j) * k + i] =
+                                        0.5 * (a[static_cast<std::size_t>(i) * k + j] + a[static_cast<std::size_t>(j) * k + i]);
+    for (int j = 0; j < k; ++j) {
+        double pivot = a[static_cast<std::size_t>(j) * k + j];
+        for (int l = 0; l < j; ++l) pivot -= a[static_cast<std::size_t>(j) * k + l] * a[static_cast<std::size_t>(j) * k + l];
+        if (!(pivot > 0.0)) return 0;  // negative curvature in W: leave it to Newton's safeguards
+        const double root = std::sqrt(pivot);
+        a[static_cast<std::size_t>(j) * k + j] = root;
+        for (int i = j + 1; i < k; ++i) {
+            double value = a[static_cast<std::size_t>(i) * k + j];
+            for (int l = 0; l < j; ++l) value -= a[static_cast<std::size_t>(i) * k + l] * a[static_cast<std::size_t>(j) * k + l];
+            a[static_cast<std::size_t>(i) * k + j] = value / root;
+        }
+    }
+    std::vector<double> c = b;  // L Lᵀ c = b
+    for (int i = 0; i < k; ++i) {
+        for (int l = 0; l < i; ++l) c[i] -= a[static_cast<std::size_t>(i) * k + l] * c[l];
+        c[i] /= a[static_cast<std::size_t>(i) * k + i];
+    }
+    for (int i = k - 1; i >= 0; --i) {
+        for (int l = i + 1; l < k; ++l) c[i] -= a[static_cast<std::size_t>(l) * k + i] * c[l];
+        c[i] /= a[static_cast<std::size_t>(i) * k + i];
+    }
+    std::vector<double> step(g.size(), 0.0);
+    for (int j = 0; j < k; ++j)
+        for (std::size_t q = 0; q < step.size(); ++q) step[q] += c[j] * basis[j][q];
+    const double slope = dotProduct(g, step);  // −bᵀA⁻¹b < 0
+    moveAlong(u, step, 1.0);
+    const double trialEnergy = fitAndEnergy(trial, trialRotations);
+    const bool accepted = slope < 0.0 && std::isfinite(trialEnergy) && trialEnergy <= energy + 1e-4 * slope;
+    if (monitor)
+        std::printf("  reduced Newton, subspace of %d correction(s): energy %.12e -> %.12e%s\n", k, energy, trialEnergy,
+                    accepted ? "" : ", not taken");
+    if (!accepted) return 0;
+    u.swap(trial);
+    rotations.swap(trialRotations);
+    energy = trialEnergy;
+    gradient(u, rotations, g);
+    return k;
+}
+
 RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplacement, const RbmState* initialGuess)
 {
     problem_.checkNodeArray(prescribedDisplacement, "prescribed displacement");
@@ -679,6 +755,7 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
 
     std::vector<double> start(size), correction(size);
     std::string failure;
+    bool chained = false;  // warm-started from this solver's own last result, with its history
     if (initialGuess) {
         // Warm start. When the guess is this solver's own last result and the one before is
         // known, a secant step along the boundary's path first: G = u_n + α (u_n − u_{n−1}),
@@ -688,6 +765,7 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
         problem_.checkNodeArray(initialGuess->displacement, "initial guess displacement");
         std::vector<Vector3> base(initialGuess->displacement.begin(), initialGuess->displacement.end());
         const bool secant = !previousSolution_.empty() && lastSolution_ == base;
+        chained = secant;
         if (secant) {
             double numerator = 0.0, denominator = 0.0;
             for (int node = 0; node < n; ++node) {
@@ -721,6 +799,26 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
     setUnknowns(u, start);
     std::vector<Matrix3> rotations, trialRotations;
     std::vector<Vector3> trial;
+    // trial ← from + λ step (step compact), sliding nodes put back onto their planes exactly.
+    auto moveAlong = [&](const std::vector<Vector3>& from, std::span<const double> direction, double lambda) {
+        trial = from;
+        for (int a = 0; a < m; ++a) {
+            Vector3& value = trial[nodes[a]];
+            for (int q = 0; q < dim; ++q) value[q] += lambda * direction[static_cast<std::size_t>(a) * dim + q];
+            if (problem_.kind(nodes[a]) == NodeKind::sliding) {
+                Vector3 c{};
+                for (int q = 0; q < dim; ++q) c[q] = offset[static_cast<std::size_t>(a) * dim + q];
+                value -= problem_.slidingNormalPart(nodes[a], value - c);
+            }
+        }
+    };
+    auto compactUnknowns = [&](const std::vector<Vector3>& displacement) {
+        std::vector<double> values(size);
+        for (int a = 0; a < m; ++a)
+            for (int q = 0; q < dim; ++q) values[static_cast<std::size_t>(a) * dim + q] = displacement[nodes[a]][q];
+        return values;
+    };
+    const std::vector<double> predicted = chained ? compactUnknowns(u) : std::vector<double>{};
     std::vector<double> g(size), trialGradient(size), step(size);
     std::vector<double> negativeGradient(size), estimatedCorrection(size);  // the displacement test
     double energy = fitAndEnergy(u, rotations);
@@ -789,6 +887,8 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
     int localGlobalSteps = 0;
     std::string reason = failure;
     result.converged = false;
+    int firstNewtonIteration = 0;  // after the subspace step, Newton's forcing starts afresh
+    bool subspaceTried = !chained;
     for (int iteration = 0; failure.empty(); ++iteration) {
         if (!std::isfinite(energy) || !std::isfinite(gradientNorm)) {
             reason = "DIVERGED_FNORM_NAN";
@@ -811,7 +911,7 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
         }
         // Eisenstat–Walker (choice 2): η = 0.9 (‖g‖/‖g_prev‖)^forcingExponent_, safeguarded, at
         // most 0.5, and no tighter than the final tolerance needs (finalForcingFactor_ of it).
-        if (iteration > 0) {
+        if (iteration > firstNewtonIteration) {
             const double ratio = gradientNorm / previousGradientNorm;
             const double safeguard = 0.9 * std::pow(forcing, forcingExponent_);
             forcing = 0.9 * std::pow(ratio, forcingExponent_);
@@ -835,6 +935,21 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
                 break;
             }
             firstPreconditioned = &estimatedCorrection;
+        }
+        if (!subspaceTried) {
+            subspaceTried = true;
+            // The Galerkin step in the span W of the last Newton corrections, c = (WᵀSW)⁻¹ Wᵀ(−∇Ẽ),
+            // first. Along a smooth time series the secant predictor misses by nearly the same
+            // field each step (its error is the curvature of the path), which CG would rebuild
+            // from K⁻¹ in about ten iterations; W costs one S product per vector and no
+            // back-substitution. Then the tests and Newton from the new point.
+            if (subspaceStep(u, rotations, energy, g, moveAlong, trial, trialRotations, monitor == PETSC_TRUE) > 0) {
+                ++result.iterations;
+                gradientNorm = euclideanNorm(g);
+                previousGradientNorm = gradientNorm;
+                firstNewtonIteration = iteration + 1;
+                continue;
+            }
         }
 
         prepareHessian(u, rotations);
@@ -864,16 +979,7 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
         bool accepted = false;
         double trialEnergy = energy, trialGradientNorm = gradientNorm;
         for (int attempt = 0; attempt < 40 && !accepted; ++attempt) {
-            trial = u;
-            for (int a = 0; a < m; ++a) {
-                Vector3& value = trial[nodes[a]];
-                for (int q = 0; q < dim; ++q) value[q] += lambda * step[static_cast<std::size_t>(a) * dim + q];
-                if (problem_.kind(nodes[a]) == NodeKind::sliding) {  // back onto the plane (line) exactly
-                    Vector3 c{};
-                    for (int q = 0; q < dim; ++q) c[q] = offset[static_cast<std::size_t>(a) * dim + q];
-                    value -= problem_.slidingNormalPart(nodes[a], value - c);
-                }
-            }
+            moveAlong(u, step, lambda);
             trialEnergy = fitAndEnergy(trial, trialRotations);
             bool gradientKnown = false;
             if (std::isfinite(trialEnergy) && trialEnergy <= energy + 1e-4 * lambda * slope) {
@@ -919,6 +1025,18 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
     // History of the secant predictor: only along a chain of warm starts from own results.
     if (initialGuess && !lastSolution_.empty()) previousSolution_.swap(lastSolution_);
     else previousSolution_.clear();
+    // The corrections of converged chained steps, newest first (a reversal's zero one adds nothing).
+    if (!chained || !result.converged || options_.correctionMemory <= 0) {
+        recentCorrections_.clear();
+    } else {
+        std::vector<double> newCorrection = compactUnknowns(u);
+        for (std::size_t k = 0; k < size; ++k) newCorrection[k] -= predicted[k];
+        if (euclideanNorm(newCorrection) > 0.0) {
+            recentCorrections_.insert(recentCorrections_.begin(), std::move(newCorrection));
+            if (recentCorrections_.size() > static_cast<std::size_t>(options_.correctionMemory))
+                recentCorrections_.resize(static_cast<std::size_t>(options_.correctionMemory));
+        }
+    }
     lastSolution_ = u;
     result.displacement = u;
     result.rotation.assign(n, Vector3{});

@@ -69,6 +69,7 @@
 #include "SparseCholesky.hpp"
 
 #include <array>
+#include <functional>
 #include <memory>
 #include <span>
 #include <vector>
@@ -99,6 +100,12 @@ struct ReducedNewtonOptions {
     // by rbm or the 3D multigrid cycle): also try the harmonic interpolation of the body's turn
     // (solve(); false: only the harmonic interpolation of the displacements, for tests).
     bool turnedStart = true;
+    // Warm starts along a chain of own results: the Newton corrections of the last
+    // correctionMemory steps (result − predictor) span the first step, a Galerkin step in that
+    // subspace (solve(); 0: off; -rbm_reduced_correction_memory N). On the pitching airfoil each
+    // correction lies within 1.5 % of the previous one's direction (Euclidean norm) and within
+    // 0.1 % of the span of the last two.
+    int correctionMemory = 3;
 };
 
 class ReducedNewtonSolver : public RbmSolver {
@@ -138,6 +145,14 @@ private:
     // projections, to relativeTolerance (3D with sliding nodes; 2D with K iterative). False if
     // CG failed.
     bool projectedCycleSolve(std::span<const double> r, std::span<double> z, double relativeTolerance);
+    // trial ← from + λ step (step compact), sliding nodes back onto their planes (solve()).
+    using TrialMove = std::function<void(const std::vector<Vector3>& from, std::span<const double> step, double lambda)>;
+    // Warm starts: one Galerkin step in the span of recentCorrections_ from u, taken when it
+    // lowers Ẽ (Armijo); then u, rotations, energy and g are the new point's. Returns the
+    // subspace's dimension, 0 when no step was taken.
+    int subspaceStep(std::vector<Vector3>& u, std::vector<Matrix3>& rotations, double& energy, std::vector<double>& g,
+                     const TrialMove& moveAlong, std::vector<Vector3>& trial, std::vector<Matrix3>& trialRotations,
+                     bool monitor);
     // max over unknown nodes of |v_node| / (the node's shortest edge), v compact.
     double largestRelativeDisplacement(std::span<const double> v) const;
 
@@ -164,6 +179,9 @@ private:
     std::unique_ptr<InheritedOptions> laplacianOptions_;  // rbm's defaults for K's solver in PETSc (CHOLMOD, BoomerAMG)
     // The last two results (node displacements), for the secant predictor of warm starts.
     std::vector<Vector3> lastSolution_, previousSolution_;
+    // The last Newton corrections (result − predictor, compact), newest first, for the
+    // subspace step of warm starts (ReducedNewtonOptions::correctionMemory).
+    std::vector<std::vector<double>> recentCorrections_;
     // Work arrays (compact: dimension() entries per unknown node).
     std::vector<double> componentIn_, componentOut_, projected_;
     std::vector<double> inverseShortestEdge_;  // per unknown node, for displacementTolerance
