@@ -630,6 +630,13 @@ bool ReducedNewtonSolver::harmonicShare(std::span<const double> b, std::span<dou
     return conjugateGradients(multiply, cycle, b, s, harmonicShareTolerance, maximumIterations, work);
 }
 
+namespace {
+// A subspace step, or a correction kept for it, matters when it moves some node by more than
+// this many displacement tolerances of its shortest edge (below, the displacement test and
+// Newton finish more cheaply; at a reversal of the motion the predictor is the solution).
+constexpr double significantCorrection = 10.0;
+} // namespace
+
 int ReducedNewtonSolver::subspaceStep(std::vector<Vector3>& u, std::vector<Matrix3>& rotations, double& energy,
                                       std::vector<double>& g, const TrialMove& moveAlong, std::vector<Vector3>& trial,
                                       std::vector<Matrix3>& trialRotations, bool monitor)
@@ -687,6 +694,11 @@ int ReducedNewtonSolver::subspaceStep(std::vector<Vector3>& u, std::vector<Matri
     for (int j = 0; j < k; ++j)
         for (std::size_t q = 0; q < step.size(); ++q) step[q] += c[j] * basis[j][q];
     const double slope = dotProduct(g, step);  // −bᵀA⁻¹b < 0
+    if (options_.displacementTolerance > 0.0 &&
+        largestRelativeDisplacement(step) <= significantCorrection * options_.displacementTolerance) {
+        if (monitor) std::printf("  reduced Newton, subspace of %d correction(s): step within 10 tolerances, not taken\n", k);
+        return 0;
+    }
     moveAlong(u, step, 1.0);
     const double trialEnergy = fitAndEnergy(trial, trialRotations);
     const bool accepted = slope < 0.0 && std::isfinite(trialEnergy) && trialEnergy <= energy + 1e-4 * slope;
@@ -721,18 +733,36 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
         return v;
     };
     // b_k = Σ_{j prescribed} w ū_j − (K c)_k: the right-hand side of the harmonic interpolation.
+    // Only unknown nodes next to a prescribed one have a boundary term, and K c only with
+    // sliding nodes (c = 0 otherwise): a warm start evaluates this twice.
+    if (boundaryNeighbours_.empty()) {
+        for (int a = 0; a < m; ++a) {
+            const int i = nodes[a];
+            for (int e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e)
+                if (!problem_.isUnknown(graph.neighbours[e])) {
+                    boundaryNeighbours_.push_back(a);
+                    break;
+                }
+        }
+        boundaryNeighbours_.push_back(-1);  // the list is made (a solve may have none)
+    }
     auto boundaryRightHandSide = [&](std::span<const Vector3> values, std::span<const double> slidingOffset) {
         std::vector<double> b(size, 0.0);
-        for (int a = 0; a < m; ++a) {
+        for (const int a : boundaryNeighbours_) {
+            if (a < 0) break;
             const int i = nodes[a];
             Vector3 sum{};
             for (int e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e)
                 if (!problem_.isUnknown(graph.neighbours[e]))
                     sum += problem_.edgeWeights()[e] * flat(values[graph.neighbours[e]]);
-            for (int position = pattern.rowOffsets[a]; position < pattern.rowOffsets[a + 1]; ++position)
-                for (int q = 0; q < dim; ++q)
-                    sum[q] -= laplacian_[position] * slidingOffset[static_cast<std::size_t>(pattern.columns[position]) * dim + q];
             for (int q = 0; q < dim; ++q) b[static_cast<std::size_t>(a) * dim + q] = sum[q];
+        }
+        if (problem_.hasSlidingNodes()) {
+            for (int a = 0; a < m; ++a)
+                for (int position = pattern.rowOffsets[a]; position < pattern.rowOffsets[a + 1]; ++position)
+                    for (int q = 0; q < dim; ++q)
+                        b[static_cast<std::size_t>(a) * dim + q] -=
+                            laplacian_[position] * slidingOffset[static_cast<std::size_t>(pattern.columns[position]) * dim + q];
         }
         return b;
     };
@@ -918,6 +948,25 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
             if (safeguard > 0.1) forcing = std::max(forcing, safeguard);
         }
         forcing = std::clamp(forcing, finalForcingFactor_ * std::max(tolerance, roundingLevel) / gradientNorm, 0.5);
+        if (!subspaceTried) {
+            subspaceTried = true;
+            // The Galerkin step in the span W of the last Newton corrections, c = (WᵀSW)⁻¹ Wᵀ(−∇Ẽ),
+            // first. Along a smooth time series the secant predictor misses by nearly the same
+            // field each step (its error is the curvature of the path), which CG would rebuild
+            // from K⁻¹ in about ten iterations; W costs one S product per vector and no
+            // back-substitution. Before the displacement test (whose K⁻¹(−∇Ẽ) would be thrown
+            // away): a step smaller than that test's tolerance is not taken (the predictor at a
+            // reversal of the motion is the solution already). Then the tests and Newton from
+            // the new point.
+            if (subspaceStep(u, rotations, energy, g, moveAlong, trial, trialRotations, monitor == PETSC_TRUE) > 0) {
+                ++result.iterations;
+                gradientNorm = euclideanNorm(g);
+                previousGradientNorm = gradientNorm;
+                firstNewtonIteration = iteration + 1;
+                continue;
+            }
+        }
+
         // The displacement test: K⁻¹(−∇Ẽ), the local/global estimate of the remaining
         // displacement (S ≤ K: it underestimates the Newton step, by 2.5–5× on the airfoil near
         // convergence), small against every node's shortest edge. It is CG's first
@@ -936,22 +985,6 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
             }
             firstPreconditioned = &estimatedCorrection;
         }
-        if (!subspaceTried) {
-            subspaceTried = true;
-            // The Galerkin step in the span W of the last Newton corrections, c = (WᵀSW)⁻¹ Wᵀ(−∇Ẽ),
-            // first. Along a smooth time series the secant predictor misses by nearly the same
-            // field each step (its error is the curvature of the path), which CG would rebuild
-            // from K⁻¹ in about ten iterations; W costs one S product per vector and no
-            // back-substitution. Then the tests and Newton from the new point.
-            if (subspaceStep(u, rotations, energy, g, moveAlong, trial, trialRotations, monitor == PETSC_TRUE) > 0) {
-                ++result.iterations;
-                gradientNorm = euclideanNorm(g);
-                previousGradientNorm = gradientNorm;
-                firstNewtonIteration = iteration + 1;
-                continue;
-            }
-        }
-
         prepareHessian(u, rotations);
         const int linearIterationsBefore = result.linearIterations;
         bool negativeCurvature = false;
@@ -1031,7 +1064,13 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
     } else {
         std::vector<double> newCorrection = compactUnknowns(u);
         for (std::size_t k = 0; k < size; ++k) newCorrection[k] -= predicted[k];
-        if (euclideanNorm(newCorrection) > 0.0) {
+        // Only corrections of the predictor's error, not of a few tolerances (a reversal of
+        // the motion, whose predictor was the solution already): noise would take a place.
+        const bool significant =
+            options_.displacementTolerance > 0.0
+                ? largestRelativeDisplacement(newCorrection) > significantCorrection * options_.displacementTolerance
+                : euclideanNorm(newCorrection) > 0.0;
+        if (significant) {
             recentCorrections_.insert(recentCorrections_.begin(), std::move(newCorrection));
             if (recentCorrections_.size() > static_cast<std::size_t>(options_.correctionMemory))
                 recentCorrections_.resize(static_cast<std::size_t>(options_.correctionMemory));
