@@ -688,8 +688,9 @@ void MoveMeshRun::writeTime(const std::string& timeName, const std::vector<Vecto
 void MoveMeshRun::writeVtk(double time, const std::string& timeName, const std::vector<Vector3>& points)
 {
     if (!options_.writesFiles) return;
-    // assessor_'s geometry is that of `points` (evaluated just before).
-    const MeshGeometry& geometry = assessor_->geometry();
+    // assessor_ evaluated `points` just before (their geometry, computed now if the step's
+    // evaluation did without it).
+    const MeshGeometry& geometry = assessor_->geometryAt(points);
     const std::size_t cellCount = geometry.cellVolumes.size();
     const Label internalFaces = mesh_.internalFaceCount();
 

@@ -55,10 +55,11 @@ public:
     // Quality of the mesh with its points at `points`; geometry() is then theirs.
     QualityReport evaluate(std::span<const Vector3> points);
     // Only the log line's figures (worst quality, max non-orthogonality and skewness, inverted
-    // cells), each equal to the full report's, at about half the cost; geometry() is then
-    // that of `points`. What assess() evaluates.
+    // cells), each equal to the full report's (QualityReport.hpp, StepQuality), at about half
+    // the cost; geometryAt(points) is then that of `points`. What assess() evaluates.
     StepQuality evaluateStep(std::span<const Vector3> points) { return evaluator_.evaluateStep(points); }
-    const MeshGeometry& geometry() const { return evaluator_.geometry(); }
+    // The geometry of `points`, the points of the last evaluate() or evaluateStep().
+    const MeshGeometry& geometryAt(std::span<const Vector3> points) { return evaluator_.geometryAt(points); }
     const MeshTopology& topology() const { return evaluator_.topology(); }
     // The extracted 2D mesh of a pseudo-3D mesh, nullptr otherwise (QualityEvaluator::twoDMesh).
     const PseudoTwoDMesh* twoDMesh() const { return evaluator_.twoDMesh(); }

@@ -405,6 +405,98 @@ CheckMeshExtremes computeCheckMeshExtremes(const PolyMesh& mesh, std::span<const
     return extremes;
 }
 
+std::optional<CheckMeshExtremes> computeExtrusionCheckMeshExtremes(const PolyMesh& mesh, const PseudoTwoDMesh& twoD,
+                                                                   std::span<const Vector3> points,
+                                                                   ExtrusionExtremesWorkspace& workspace)
+{
+    if (twoD.kind != PseudoTwoDKind::Empty || points.size() != mesh.points.size()) return std::nullopt;
+    const PlanarMesh& planar = twoD.planar;
+    const PlaneFrame& frame = twoD.frame;
+    const Label nodes = planar.nodeCount();
+    if (nodes == 0) return std::nullopt;
+    // Still an extrusion to rounding? Both planes' coordinates of every node, within
+    // extrusionTolerance of the thickness (out of plane) or of the coordinates' size (in plane):
+    // a body turned about the plane's normal moves its points out of plane by the rounding of
+    // its rotation (0.1 + 2e-17 on the benchmark's airfoil).
+    constexpr double extrusionTolerance = 1e-12;
+    auto& positions = workspace.planarPositions;
+    positions.resize(static_cast<std::size_t>(nodes));
+    const double frontPlane = frame.toLocal(points[twoD.frontPointOfNode[0]]).z;
+    const double backPlane = frame.toLocal(points[twoD.backPointOfNode[0]]).z;
+    const double thickness = backPlane - frontPlane;
+    const double outOfPlane = extrusionTolerance * thickness;
+    bool extrusion = thickness > 0.0;
+#pragma omp parallel for schedule(static) reduction(&& : extrusion) if (worthThreading(static_cast<std::size_t>(nodes)))
+    for (Label n = 0; n < nodes; ++n) {
+        const Vector3 front = frame.toLocal(points[twoD.frontPointOfNode[n]]);
+        const Vector3 back = frame.toLocal(points[twoD.backPointOfNode[n]]);
+        const double inPlane = extrusionTolerance * (std::abs(front.x) + std::abs(front.y) + thickness);
+        extrusion = extrusion && std::abs(front.x - back.x) <= inPlane && std::abs(front.y - back.y) <= inPlane &&
+                    std::abs(front.z - frontPlane) <= outOfPlane && std::abs(back.z - backPlane) <= outOfPlane;
+        positions[n] = {front.x, front.y, 0.0};
+    }
+    if (!extrusion) return std::nullopt;
+    const double middle = 0.5 * (frontPlane + backPlane);
+
+    // Cell centres: the polygon's centroid (shoelace, about its first vertex) at mid-thickness.
+    const Label cellCount = planar.cellCount();
+    auto& cellCentres = workspace.cellCentres;
+    cellCentres.resize(static_cast<std::size_t>(cellCount));
+    bool positive = true;
+#pragma omp parallel for schedule(static) reduction(&& : positive) if (worthThreading(static_cast<std::size_t>(cellCount)))
+    for (Label c = 0; c < cellCount; ++c) {
+        const auto polygon = planar.cell(c);
+        const Vector3& origin = positions[polygon[0]];
+        double twiceArea = 0.0, sumX = 0.0, sumY = 0.0;
+        for (std::size_t k = 1; k + 1 < polygon.size(); ++k) {
+            const Vector3 a = positions[polygon[k]] - origin;
+            const Vector3 b = positions[polygon[k + 1]] - origin;
+            const double cross = a.x * b.y - a.y * b.x;
+            twiceArea += cross;
+            sumX += cross * (a.x + b.x);
+            sumY += cross * (a.y + b.y);
+        }
+        positive = positive && twiceArea > 0.0;
+        const double scale = twiceArea > 0.0 ? 1.0 / (3.0 * twiceArea) : 0.0;
+        cellCentres[c] = frame.toGlobal({origin.x + sumX * scale, origin.y + sumY * scale, middle});
+    }
+    if (!positive) return std::nullopt;  // an inverted cell: OpenFOAM's decompositions decide
+
+    // Side faces, one per 2D edge: centre at the edge's midpoint, area (dy, −dx) × thickness
+    // (the edge runs counter-clockwise around its owner, whose side the normal leaves).
+    const Label edgeCount = planar.edgeCount();
+    const Label internalEdges = planar.internalEdgeCount();
+    auto& edgeCosine = workspace.edgeCosine;
+    auto& edgeSkew = workspace.edgeSkew;
+    edgeCosine.resize(static_cast<std::size_t>(internalEdges));
+    edgeSkew.resize(static_cast<std::size_t>(edgeCount));
+#pragma omp parallel for schedule(static) if (worthThreading(static_cast<std::size_t>(edgeCount)))
+    for (Label e = 0; e < edgeCount; ++e) {
+        const Label f = twoD.faceOfEdge[e];
+        const auto [first, second] = planar.edge(e);
+        const Vector3& p0 = positions[first];
+        const Vector3& p1 = positions[second];
+        const Vector3 faceCentre = frame.toGlobal({0.5 * (p0.x + p1.x), 0.5 * (p0.y + p1.y), middle});
+        const Vector3 faceArea = frame.toGlobal({(p1.y - p0.y) * thickness, (p0.x - p1.x) * thickness, 0.0});  // linear
+        const Vector3& ownerCentre = cellCentres[planar.edgeOwner[e]];
+        if (e < internalEdges) {
+            const Vector3& neighbourCentre = cellCentres[planar.edgeNeighbour[e]];
+            edgeCosine[e] = faceNonOrthogonalityCosine(ownerCentre, neighbourCentre, faceArea);
+            edgeSkew[e] = faceSkewness(mesh.face(f), points, faceCentre, faceArea, ownerCentre, neighbourCentre);
+        } else {
+            edgeSkew[e] = boundaryFaceSkewness(mesh.face(f), points, faceCentre, faceArea, ownerCentre);
+        }
+    }
+    double minCosine = veryGreat;
+    for (Label e = 0; e < internalEdges; ++e) minCosine = std::min(minCosine, edgeCosine[e]);
+    double maxSkew = 0.0;  // the empty faces': 0
+    for (Label e = 0; e < edgeCount; ++e) maxSkew = std::max(maxSkew, edgeSkew[e]);
+    CheckMeshExtremes extremes;
+    extremes.maxSkewness = maxSkew;
+    if (internalEdges > 0) extremes.maxNonOrthogonality = radiansToDegrees(std::acos(std::clamp(minCosine, -1.0, 1.0)));
+    return extremes;
+}
+
 CheckMeshQuality computeCheckMeshQuality(const PolyMesh& mesh, const MeshGeometry& geometry)
 {
     CheckMeshWorkspace workspace;

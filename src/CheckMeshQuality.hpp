@@ -31,8 +31,10 @@
 
 #include "MeshGeometry.hpp"
 #include "PolyMesh.hpp"
+#include "PseudoTwoDExtraction.hpp"
 
 #include <array>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -137,6 +139,28 @@ struct CheckMeshExtremesWorkspace {
 };
 CheckMeshExtremes computeCheckMeshExtremes(const PolyMesh& mesh, std::span<const Vector3> points,
                                            const MeshGeometry& geometry, CheckMeshExtremesWorkspace& workspace);
+
+// The same two extremes for a one-layer extrusion between two `empty` planes (twoD.kind
+// Empty) whose points at `points` are still an extrusion to rounding (1e-12): every front point
+// and its twin with the same in-plane coordinates, each plane at one out-of-plane coordinate,
+// the back one beyond the front one, and every cell of positive area. Then each 3D cell is a prism, its
+// centre the polygon's centroid at mid-thickness, each side face a rectangle with its centre
+// at the edge's midpoint and its area vector the edge's normal times the thickness: closed
+// forms from the 2D positions instead of OpenFOAM's triangle and pyramid decompositions of
+// every face and cell (the same values to rounding: 1e-12 relative on the checkMesh fixtures),
+// and the empty faces' skewness its exact value 0 (the cell centre lies on their normal
+// through their centre). The per-face formulas are those above. About a fifth of
+// computeCheckMeshExtremes' cost with updateMeshGeometry; std::nullopt where the conditions
+// do not hold (then computeCheckMeshExtremes). `workspace` keeps the work arrays.
+struct ExtrusionExtremesWorkspace {
+    std::vector<Vector3> planarPositions;   // per 2D node, in the plane's frame
+    std::vector<Vector3> cellCentres;       // per cell, global
+    std::vector<double> edgeCosine;
+    std::vector<double> edgeSkew;
+};
+std::optional<CheckMeshExtremes> computeExtrusionCheckMeshExtremes(const PolyMesh& mesh, const PseudoTwoDMesh& twoD,
+                                                                   std::span<const Vector3> points,
+                                                                   ExtrusionExtremesWorkspace& workspace);
 
 // The per-face measures, for tests and for locating bad faces.
 double faceNonOrthogonalityCosine(const Vector3& ownerCentre, const Vector3& neighbourCentre, const Vector3& faceArea);

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 namespace rbm {
@@ -33,9 +34,19 @@ QualityEvaluator::QualityEvaluator(const PolyMesh& mesh, MeshTopology topology, 
     }
 }
 
+const MeshGeometry& QualityEvaluator::geometryAt(std::span<const Vector3> points)
+{
+    if (geometryStale_) {
+        updateMeshGeometry(mesh_, points, geometry_);
+        geometryStale_ = false;
+    }
+    return geometry_;
+}
+
 QualityReport QualityEvaluator::evaluate(std::span<const Vector3> points)
 {
     updateMeshGeometry(mesh_, points, geometry_);
+    geometryStale_ = false;
 
     QualityReport report;
     report.pointCount = mesh_.pointCount();
@@ -75,11 +86,21 @@ QualityReport QualityEvaluator::evaluate(std::span<const Vector3> points)
 
 StepQuality QualityEvaluator::evaluateStep(std::span<const Vector3> points)
 {
-    updateMeshGeometry(mesh_, points, geometry_);
     StepQuality quality;
-    const CheckMeshExtremes extremes = computeCheckMeshExtremes(mesh_, points, geometry_, extremesWorkspace_);
-    quality.maxNonOrthogonality = extremes.maxNonOrthogonality;
-    quality.maxSkewness = extremes.maxSkewness;
+    // A one-layer extrusion between empty planes, still one to rounding: checkMesh's two extremes
+    // from the 2D positions (computeExtrusionCheckMeshExtremes), without the 3D geometry, which
+    // geometryAt() then computes if asked. Otherwise OpenFOAM's decompositions.
+    std::optional<CheckMeshExtremes> extremes;
+    if (twoD_) extremes = computeExtrusionCheckMeshExtremes(mesh_, *twoD_, points, extrusionWorkspace_);
+    if (extremes) {
+        geometryStale_ = true;
+    } else {
+        updateMeshGeometry(mesh_, points, geometry_);
+        geometryStale_ = false;
+        extremes = computeCheckMeshExtremes(mesh_, points, geometry_, extremesWorkspace_);
+    }
+    quality.maxNonOrthogonality = extremes->maxNonOrthogonality;
+    quality.maxSkewness = extremes->maxSkewness;
 
     // Per cell by threads (each writes its own slots), then the minima and the count in cell
     // order, as computeThesisQuality2D/3D take them: the same figures for any thread count.

@@ -59,8 +59,10 @@ struct QualityReport {
 };
 
 // The four figures a time step's log line and the inverted-cell policy need (rbmMoveMesh's
-// time loop, the OpenFOAM plugin; motionSolvers/StepAssessment.hpp), each equal to the last
-// bit to the same figure of the full report:
+// time loop, the OpenFOAM plugin; motionSolvers/StepAssessment.hpp), each equal to the same
+// figure of the full report: to the last bit, except the two checkMesh extremes of a pseudo-2D
+// mesh that is still an extrusion (to rounding), which come from closed forms on the 2D mesh
+// (computeExtrusionCheckMeshExtremes) and agree to rounding (about 1e-14 relative):
 struct StepQuality {
     double maxNonOrthogonality = 0.0;   // report.checkMesh.maxNonOrthogonality
     double maxSkewness = 0.0;           // report.checkMesh.maxSkewness
@@ -85,15 +87,18 @@ public:
     // The report for the mesh with its points at `points` (mesh.points or moved positions).
     QualityReport evaluate(std::span<const Vector3> points);
     QualityReport evaluate() { return evaluate(mesh_.points); }
-    // Only the figures of StepQuality, at about half the cost of evaluate(); geometry() is
-    // then that of `points` too.
+    // Only the figures of StepQuality, at about half the cost of evaluate() (a pseudo-2D mesh
+    // still an extrusion: about a fifth). geometryAt(points) is then that of `points`.
     StepQuality evaluateStep(std::span<const Vector3> points);
 
     const MeshTopology& topology() const { return topology_; }
     // The extracted 2D mesh of a pseudo-3D mesh (nullptr otherwise, or when the extraction failed).
     const PseudoTwoDMesh* twoDMesh() const { return twoD_; }
 
-    // The geometry computed by the last evaluate().
+    // The geometry of the points of the last evaluate() or evaluateStep(), which must be
+    // `points`: computed here when evaluateStep() did without it (an extrusion).
+    const MeshGeometry& geometryAt(std::span<const Vector3> points);
+    // The geometry computed by the last evaluate() (or evaluateStep() on its 3D path).
     const MeshGeometry& geometry() const { return geometry_; }
     bool isTwoD() const { return twoD_ != nullptr; }
 
@@ -111,6 +116,8 @@ private:
     ThesisQualityWorkspace thesisWorkspace_;
     std::vector<Vector3> nodePositions_;
     CheckMeshExtremesWorkspace extremesWorkspace_;
+    ExtrusionExtremesWorkspace extrusionWorkspace_;
+    bool geometryStale_ = false;                // geometry_ is not that of the last evaluateStep's points
     std::vector<double> cellValues_;            // evaluateStep: per cell q / F_shape, or pyramid ratio
     std::vector<std::uint8_t> cellInverted_;    // evaluateStep: per cell
 };

@@ -6,6 +6,8 @@
 #include "MeshGenerators.hpp"
 #include "MeshGeometry.hpp"
 #include "PlanarMesh.hpp"
+#include "PolyMeshReader.hpp"
+#include "PseudoTwoDExtraction.hpp"
 #include "QualityReport.hpp"
 #include "ThesisQuality.hpp"
 
@@ -13,6 +15,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
 #include <limits>
 #include <string>
 #include <map>
@@ -537,10 +541,12 @@ TEST(StepQuality, OneLayerMixedMeshHasTheWorstTriangleAndTheCentreLineAngle)
     EXPECT_NEAR(step.worstCellQuality, std::sqrt(3.0) / 2, 1e-14);
     EXPECT_NEAR(step.maxNonOrthogonality, degrees(std::atan(0.5)), 1e-10);
     EXPECT_EQ(step.invertedCellCount, 0);
-    // The same figures as the full report, to the last bit.
+    // The same figures as the full report: the worst quality to the last bit; the checkMesh
+    // extremes of this exact extrusion from the 2D closed forms, to rounding.
     const rbm::QualityReport full = evaluator.evaluate(mesh.points);
-    EXPECT_EQ(step.maxNonOrthogonality, full.checkMesh.maxNonOrthogonality);
-    EXPECT_EQ(step.maxSkewness, full.checkMesh.maxSkewness);
+    EXPECT_NEAR(step.maxNonOrthogonality, full.checkMesh.maxNonOrthogonality, 1e-12 * full.checkMesh.maxNonOrthogonality);
+    EXPECT_NEAR(step.maxSkewness, full.checkMesh.maxSkewness, 1e-12 * full.checkMesh.maxSkewness);
+    EXPECT_GT(full.checkMesh.maxSkewness, 0.1);
     EXPECT_EQ(step.worstCellQuality, std::min(full.thesis.triangleMeanRatio.min, full.thesis.quadrilateralShape.min));
 }
 
@@ -626,6 +632,73 @@ TEST(QualityReport, JsonWritesNonFiniteNumbersAsNull)
     const std::string json = rbm::qualityReportJson(report);
     EXPECT_NE(json.find("\"maxAspectRatio\": null"), std::string::npos) << json;
     EXPECT_EQ(json.find("inf"), std::string::npos) << json;
+}
+
+// computeExtrusionCheckMeshExtremes: the closed forms of a one-layer extrusion against
+// OpenFOAM's decompositions (computeCheckMeshExtremes after updateMeshGeometry).
+
+// Both ways for `mesh` at `points`; the extrusion's result must exist.
+void expectExtrusionExtremesLikeTheDecompositions(const PolyMesh& mesh, const std::vector<Vector3>& points,
+                                                  const std::string& name)
+{
+    const rbm::PseudoTwoDMesh twoD = rbm::extractPseudoTwoD(mesh, rbm::buildMeshTopology(mesh));
+    rbm::ExtrusionExtremesWorkspace workspace;
+    const auto fast = rbm::computeExtrusionCheckMeshExtremes(mesh, twoD, points, workspace);
+    ASSERT_TRUE(fast.has_value()) << name;
+    rbm::MeshGeometry geometry;
+    rbm::updateMeshGeometry(mesh, points, geometry);
+    rbm::CheckMeshExtremesWorkspace extremesWorkspace;
+    const rbm::CheckMeshExtremes expected = rbm::computeCheckMeshExtremes(mesh, points, geometry, extremesWorkspace);
+    std::printf("%s: max non-orthogonality %.17g (decompositions %.17g), max skewness %.17g (%.17g)\n", name.c_str(),
+                fast->maxNonOrthogonality, expected.maxNonOrthogonality, fast->maxSkewness, expected.maxSkewness);
+    EXPECT_GT(expected.maxNonOrthogonality, 1.0) << name;  // not a trivial grid
+    EXPECT_NEAR(fast->maxNonOrthogonality, expected.maxNonOrthogonality, 1e-12 * expected.maxNonOrthogonality) << name;
+    EXPECT_NEAR(fast->maxSkewness, expected.maxSkewness, 1e-12 * expected.maxSkewness) << name;
+}
+
+// The 2D checkMesh fixtures and the boundary-layer airfoil (aspect ratio ~780), the latter also
+// moved: every node turned about the trailing edge by an angle falling off with the distance,
+// front and back alike (as rbm's 2D path moves them).
+TEST(ExtrusionExtremes, AreTheDecompositionsFiguresToRounding)
+{
+    const std::filesystem::path data(RBM_TEST_DATA_DIR);
+    // (quad2D: blockMesh's arcs round each plane on its own, so its twins differ in the last
+    // bits and its back plane has five values of z: an extrusion to rounding.)
+    for (const char* fixture : {"checkMesh/quad2D", "checkMesh/prism2D", "airfoilBoundaryLayer"}) {
+        const PolyMesh mesh = rbm::io::readPolyMesh(data / fixture / "constant" / "polyMesh");
+        expectExtrusionExtremesLikeTheDecompositions(mesh, mesh.points, fixture);
+    }
+    const PolyMesh airfoil = rbm::io::readPolyMesh(data / "airfoilBoundaryLayer" / "constant" / "polyMesh");
+    std::vector<Vector3> moved = airfoil.points;
+    for (Vector3& p : moved) {
+        const double dx = p.x - 1.0, dy = p.y;
+        const double angle = 0.07 * std::exp(-0.5 * (dx * dx + dy * dy));
+        p.x = 1.0 + std::cos(angle) * dx - std::sin(angle) * dy;
+        p.y = std::sin(angle) * dx + std::cos(angle) * dy;
+        if (p.z > 0.0) p.z += 2e-17;  // as a turned body's rotation rounds it (0.1 + 2e-17)
+    }
+    expectExtrusionExtremesLikeTheDecompositions(airfoil, moved, "turned airfoil");
+}
+
+TEST(ExtrusionExtremes, LeaveNonExtrusionsAndInvertedCellsToTheDecompositions)
+{
+    const PolyMesh mesh = rbm::makeExtruded2D(3, 3, {0, 0, 0}, {3, 3, 1});
+    const rbm::PseudoTwoDMesh twoD = rbm::extractPseudoTwoD(mesh, rbm::buildMeshTopology(mesh));
+    rbm::ExtrusionExtremesWorkspace workspace;
+    ASSERT_TRUE(rbm::computeExtrusionCheckMeshExtremes(mesh, twoD, mesh.points, workspace).has_value());
+    // One back point moved in its plane without its front twin: no longer an extrusion.
+    std::vector<Vector3> sheared = mesh.points;
+    sheared[twoD.backPointOfNode[5]].x += 0.1;
+    EXPECT_FALSE(rbm::computeExtrusionCheckMeshExtremes(mesh, twoD, sheared, workspace).has_value());
+    // One point out of its plane.
+    std::vector<Vector3> bent = mesh.points;
+    bent[twoD.frontPointOfNode[5]].z += 0.01;
+    EXPECT_FALSE(rbm::computeExtrusionCheckMeshExtremes(mesh, twoD, bent, workspace).has_value());
+    // Node (1, 1) pushed to x = 4 on both planes folds two cells (StepQuality.Folded...).
+    std::vector<Vector3> folded = mesh.points;
+    for (Vector3& p : folded)
+        if (p.x == 1.0 && p.y == 1.0) p.x = 4.0;
+    EXPECT_FALSE(rbm::computeExtrusionCheckMeshExtremes(mesh, twoD, folded, workspace).has_value());
 }
 
 } // namespace
