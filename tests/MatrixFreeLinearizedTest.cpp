@@ -965,5 +965,30 @@ TEST(ReducedNewton, SubspaceOfPastCorrectionsSavesIterationsAndKeepsTheMinima)
     }
 }
 
+TEST(ReducedNewton, AfterATurningPointTheStartIsTheResultOfTheSameBoundary)
+{
+    // The top's motion scaled by sin(π k / 10), k = 1…7: a turning point at k = 5, and k = 6, 7
+    // repeat the boundaries of k = 4, 3. At k = 7 the secant through the results of k = 6 (= 4)
+    // and 5 would extrapolate by α = (s7 − s6)/(s6 − s5) = 2.9, clamped to 2, the wrong way; the
+    // fit on the boundary over the kept results picks the result of k = 3 instead, and the
+    // solve stops at the displacement test with no iteration.
+    for (const auto& [dimension, mirror] : {std::pair{2, false}, {3, true}}) {
+        const GridCase c = gridCase(dimension, dimension == 2 ? 16 : 6, mirror, 41);
+        const std::vector<Vector3> top = largeTopMotion(c);
+        ReducedNewtonSolver solver(*c.problem);
+        std::vector<RbmResult> results(8);
+        for (int k = 1; k <= 7; ++k) {
+            std::vector<Vector3> boundary = top;
+            for (Vector3& v : boundary) v = std::sin(M_PI * k / 10.0) * v;
+            results[k] = solver.solve(boundary, k == 1 ? nullptr : &results[k - 1]);
+            ASSERT_TRUE(results[k].converged) << dimension << "D step " << k << ": " << results[k].reason;
+        }
+        EXPECT_EQ(results[7].iterations, 0) << dimension << "D";
+        EXPECT_EQ(results[7].linearIterations, 0) << dimension << "D";
+        EXPECT_LT(largestDifference(results[7].displacement, results[3].displacement), 1e-12) << dimension << "D";
+        EXPECT_GT(largestDifference(results[7].displacement, results[6].displacement), 1e-3) << dimension << "D";
+    }
+}
+
 } // namespace
 } // namespace rbm::motion

@@ -631,6 +631,112 @@ bool ReducedNewtonSolver::harmonicShare(std::span<const double> b, std::span<dou
 }
 
 namespace {
+
+// The prescribed change b − u_0 and the differences u_0 − u_j (j ≥ 1) on the prescribed nodes,
+// flattened (2D: in-plane components only).
+struct BoundaryDifferences {
+    std::vector<double> target;
+    std::vector<std::vector<double>> columns;
+};
+
+BoundaryDifferences boundaryDifferences(const RbmProblem& problem, std::span<const Vector3> prescribed,
+                                        const std::vector<std::vector<Vector3>>& history)
+{
+    const int dim = problem.dimension();
+    BoundaryDifferences d;
+    d.columns.resize(history.size() - 1);
+    for (int node = 0; node < problem.nodeCount(); ++node) {
+        if (problem.isUnknown(node)) continue;
+        for (int q = 0; q < dim; ++q) {
+            d.target.push_back(prescribed[node][q] - history[0][node][q]);
+            for (std::size_t j = 1; j < history.size(); ++j) d.columns[j - 1].push_back(history[0][node][q] - history[j][node][q]);
+        }
+    }
+    return d;
+}
+
+} // namespace
+
+std::vector<double> ReducedNewtonSolver::bestPredictorOnBoundary(std::span<const Vector3> prescribedDisplacement,
+                                                                 std::vector<double> secant) const
+{
+    // Candidates c (G = u_0 + Σ_j c_j (u_0 − u_j)): the clamped secant; each older result j alone,
+    // c_j fitted; all together by least squares (modified Gram–Schmidt; a column whose part
+    // outside the span of those before it is below 1e-6 of the longest column is left out, as
+    // a result repeated at a reversal gives a zero difference). Every c_j clamped to ±2. The
+    // smallest misfit |b − G| on the prescribed nodes wins; within 1e-9 of it, the candidate
+    // that extrapolates least (the smallest largest |c_j|): where the boundary moves along one
+    // fixed field, every candidate fits it exactly and the nearest result is the right start.
+    const BoundaryDifferences d = boundaryDifferences(problem_, prescribedDisplacement, solutionHistory_);
+    const std::size_t columns = d.columns.size();
+    std::vector<std::vector<double>> candidates;
+    secant.resize(columns, 0.0);
+    candidates.push_back(std::move(secant));
+    for (std::size_t j = 1; j < columns; ++j) {
+        const double squared = dotProduct(d.columns[j], d.columns[j]);
+        if (!(squared > 0.0)) continue;
+        std::vector<double> alone(columns, 0.0);
+        alone[j] = std::clamp(dotProduct(d.target, d.columns[j]) / squared, -2.0, 2.0);
+        candidates.push_back(std::move(alone));
+    }
+    double longest = 0.0;
+    for (const std::vector<double>& column : d.columns) longest = std::max(longest, euclideanNorm(column));
+    std::vector<std::vector<double>> basis, r;  // r[i]: column kept[i]'s coordinates in the basis
+    std::vector<std::size_t> kept;
+    for (std::size_t j = 0; j < columns; ++j) {
+        std::vector<double> v = d.columns[j];
+        std::vector<double> coordinates(basis.size() + 1, 0.0);
+        for (std::size_t i = 0; i < basis.size(); ++i) {
+            coordinates[i] = dotProduct(basis[i], v);
+            for (std::size_t k = 0; k < v.size(); ++k) v[k] -= coordinates[i] * basis[i][k];
+        }
+        const double remaining = euclideanNorm(v);
+        if (!(remaining > 1e-6 * longest)) continue;
+        coordinates.back() = remaining;
+        for (double& value : v) value /= remaining;
+        basis.push_back(std::move(v));
+        r.push_back(std::move(coordinates));
+        kept.push_back(j);
+    }
+    std::vector<double> all(columns, 0.0);
+    for (std::size_t i = basis.size(); i-- > 0;) {  // R c = Qᵀ target, R upper triangular
+        double value = dotProduct(basis[i], d.target);
+        for (std::size_t l = i + 1; l < basis.size(); ++l) value -= r[l][i] * all[kept[l]];
+        all[kept[i]] = value / r[i][i];
+    }
+    for (double& c : all) c = std::clamp(c, -2.0, 2.0);
+    candidates.push_back(std::move(all));
+
+    auto misfit = [&](const std::vector<double>& c) {
+        std::vector<double> left = d.target;
+        for (std::size_t j = 0; j < columns; ++j)
+            if (c[j] != 0.0)
+                for (std::size_t k = 0; k < left.size(); ++k) left[k] -= c[j] * d.columns[j][k];
+        return euclideanNorm(left);
+    };
+    auto reach = [](const std::vector<double>& c) {
+        double largest = 0.0;
+        for (double value : c) largest = std::max(largest, std::abs(value));
+        return largest;
+    };
+    std::vector<double> misfits;
+    double best = std::numeric_limits<double>::infinity();
+    for (const std::vector<double>& c : candidates) {
+        misfits.push_back(misfit(c));
+        best = std::min(best, misfits.back());
+    }
+    const double scale = euclideanNorm(d.target);
+    std::size_t chosen = 0;
+    bool found = false;
+    for (std::size_t k = 0; k < candidates.size(); ++k) {
+        if (misfits[k] > best + 1e-9 * scale) continue;
+        if (!found || reach(candidates[k]) < reach(candidates[chosen])) chosen = k;
+        found = true;
+    }
+    return candidates[chosen];
+}
+
+namespace {
 // A subspace step, or a correction kept for it, matters when it moves some node by more than
 // this many displacement tolerances of its shortest edge (below, the displacement test and
 // Newton finish more cheaply; at a reversal of the motion the predictor is the solution).
@@ -794,18 +900,32 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
         // mismatch moved in harmonically: start = G + K⁻¹ (b(new) − b(G)).
         problem_.checkNodeArray(initialGuess->displacement, "initial guess displacement");
         std::vector<Vector3> base(initialGuess->displacement.begin(), initialGuess->displacement.end());
-        const bool secant = !previousSolution_.empty() && lastSolution_ == base;
-        chained = secant;
-        if (secant) {
+        chained = solutionHistory_.size() >= 2 && solutionHistory_[0] == base;
+        if (chained) {
+            const std::vector<Vector3>& last = solutionHistory_[0];
+            const std::vector<Vector3>& previous = solutionHistory_[1];
             double numerator = 0.0, denominator = 0.0;
             for (int node = 0; node < n; ++node) {
                 if (problem_.isUnknown(node)) continue;
-                const Vector3 step = flat(lastSolution_[node] - previousSolution_[node]);
-                numerator += dot(flat(prescribedDisplacement[node]) - flat(lastSolution_[node]), step);
+                const Vector3 step = flat(last[node] - previous[node]);
+                numerator += dot(flat(prescribedDisplacement[node]) - flat(last[node]), step);
                 denominator += normSquared(step);
             }
-            const double alpha = denominator > 0.0 ? std::clamp(numerator / denominator, -2.0, 2.0) : 0.0;
-            for (int node = 0; node < n; ++node) base[node] += alpha * (lastSolution_[node] - previousSolution_[node]);
+            const double secant = denominator > 0.0 ? numerator / denominator : 0.0;
+            std::vector<double> coefficients{std::clamp(secant, -2.0, 2.0)};
+            // |α| beyond 2: the boundary moves back past the last step (a turning point of the
+            // motion between the steps), where the secant extrapolates the wrong way. Then the
+            // candidate that fits the prescribed boundary best: the secant, the line through
+            // the last result and each older one, or the fit over all (predictorCandidates);
+            // on the benchmark's pitching airfoil the step after each reversal then starts at
+            // the result of the step mirroring it (the same boundary) instead of at energy 2e-2.
+            if (std::abs(secant) > 2.0 && solutionHistory_.size() >= 3)
+                coefficients = bestPredictorOnBoundary(prescribedDisplacement, std::move(coefficients));
+            for (std::size_t j = 0; j < coefficients.size(); ++j) {
+                if (coefficients[j] == 0.0) continue;
+                const std::vector<Vector3>& older = solutionHistory_[j + 1];
+                for (int node = 0; node < n; ++node) base[node] += coefficients[j] * (last[node] - older[node]);
+            }
         }
         std::vector<double> baseOffset(size);
         problem_.slidingOffset(base, baseOffset, dim);
@@ -1055,9 +1175,8 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
         gradientNorm = trialGradientNorm;
     }
 
-    // History of the secant predictor: only along a chain of warm starts from own results.
-    if (initialGuess && !lastSolution_.empty()) previousSolution_.swap(lastSolution_);
-    else previousSolution_.clear();
+    // History of the predictor: only along a chain of warm starts from own results.
+    if (!initialGuess) solutionHistory_.clear();
     // The corrections of converged chained steps, newest first (a reversal's zero one adds nothing).
     if (!chained || !result.converged || options_.correctionMemory <= 0) {
         recentCorrections_.clear();
@@ -1076,7 +1195,8 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
                 recentCorrections_.resize(static_cast<std::size_t>(options_.correctionMemory));
         }
     }
-    lastSolution_ = u;
+    solutionHistory_.insert(solutionHistory_.begin(), u);
+    if (solutionHistory_.size() > keptResults) solutionHistory_.resize(keptResults);
     result.displacement = u;
     result.rotation.assign(n, Vector3{});
     if (rotations.size() == static_cast<std::size_t>(n))

@@ -177,8 +177,15 @@ private:
     PetscMat components_, solutions_;      // dense m × dimension right-hand sides and solutions
     std::unique_ptr<ReducedHessian3D> hessian3D_;      // 3D: S from per-node data
     std::unique_ptr<InheritedOptions> laplacianOptions_;  // rbm's defaults for K's solver in PETSc (CHOLMOD, BoomerAMG)
-    // The last two results (node displacements), for the secant predictor of warm starts.
-    std::vector<Vector3> lastSolution_, previousSolution_;
+    // The last results (node displacements, newest first), for the predictor of warm starts:
+    // the secant from the first two, a fit on the boundary over all at a turning point.
+    static constexpr std::size_t keptResults = 4;
+    std::vector<std::vector<Vector3>> solutionHistory_;
+    // At a turning point of the motion: the predictor G = u_0 + Σ_j c_j (u_0 − u_j) over
+    // solutionHistory_ whose c fits the prescribed change on the prescribed nodes best (the
+    // candidates in the .cpp), `secant` (c_1 alone) among them.
+    std::vector<double> bestPredictorOnBoundary(std::span<const Vector3> prescribedDisplacement,
+                                                std::vector<double> secant) const;
     // The last Newton corrections (result − predictor, compact), newest first, for the
     // subspace step of warm starts (ReducedNewtonOptions::correctionMemory).
     std::vector<std::vector<double>> recentCorrections_;
