@@ -359,6 +359,26 @@ CheckMeshQuality computeCheckMeshQuality(const PolyMesh& mesh, std::span<const V
     return q;
 }
 
+namespace {
+
+// The largest non-orthogonality (from the smallest cosine over the internal faces) and the
+// largest skewness (over all faces, at least 0): min and max are exact, so the order of the
+// faces does not matter.
+CheckMeshExtremes extremesOfFaceMeasures(std::span<const double> internalFaceCosines, std::span<const double> faceSkewness)
+{
+    double minCosine = veryGreat;
+    for (const double cosine : internalFaceCosines) minCosine = std::min(minCosine, cosine);
+    double maxSkew = 0.0;
+    for (const double skew : faceSkewness) maxSkew = std::max(maxSkew, skew);
+    CheckMeshExtremes extremes;
+    extremes.maxSkewness = maxSkew;
+    if (!internalFaceCosines.empty())
+        extremes.maxNonOrthogonality = radiansToDegrees(std::acos(std::clamp(minCosine, -1.0, 1.0)));
+    return extremes;
+}
+
+} // namespace
+
 CheckMeshExtremes computeCheckMeshExtremes(const PolyMesh& mesh, std::span<const Vector3> points,
                                            const MeshGeometry& geometry, CheckMeshExtremesWorkspace& workspace)
 {
@@ -394,15 +414,7 @@ CheckMeshExtremes computeCheckMeshExtremes(const PolyMesh& mesh, std::span<const
             faceSkew[f] = boundaryFaceSkewness(mesh.face(f), points, fc, S, cellCentres[own]);
         }
     }
-    double minCosine = veryGreat;
-    for (Label f = 0; f < internalFaceCount; ++f) minCosine = std::min(minCosine, faceCosine[f]);
-    double maxSkew = 0.0;
-    for (Label f = 0; f < faceCount; ++f) maxSkew = std::max(maxSkew, faceSkew[f]);
-
-    CheckMeshExtremes extremes;
-    extremes.maxSkewness = maxSkew;
-    if (internalFaceCount > 0) extremes.maxNonOrthogonality = radiansToDegrees(std::acos(std::clamp(minCosine, -1.0, 1.0)));
-    return extremes;
+    return extremesOfFaceMeasures(faceCosine, faceSkew);
 }
 
 std::optional<CheckMeshExtremes> computeExtrusionCheckMeshExtremes(const PolyMesh& mesh, const PseudoTwoDMesh& twoD,
@@ -487,14 +499,7 @@ std::optional<CheckMeshExtremes> computeExtrusionCheckMeshExtremes(const PolyMes
             edgeSkew[e] = boundaryFaceSkewness(mesh.face(f), points, faceCentre, faceArea, ownerCentre);
         }
     }
-    double minCosine = veryGreat;
-    for (Label e = 0; e < internalEdges; ++e) minCosine = std::min(minCosine, edgeCosine[e]);
-    double maxSkew = 0.0;  // the empty faces': 0
-    for (Label e = 0; e < edgeCount; ++e) maxSkew = std::max(maxSkew, edgeSkew[e]);
-    CheckMeshExtremes extremes;
-    extremes.maxSkewness = maxSkew;
-    if (internalEdges > 0) extremes.maxNonOrthogonality = radiansToDegrees(std::acos(std::clamp(minCosine, -1.0, 1.0)));
-    return extremes;
+    return extremesOfFaceMeasures(edgeCosine, edgeSkew);  // the empty faces' skewness 0 adds nothing
 }
 
 CheckMeshQuality computeCheckMeshQuality(const PolyMesh& mesh, const MeshGeometry& geometry)

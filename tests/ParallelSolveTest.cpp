@@ -79,6 +79,19 @@ double largestDifference(const std::vector<Vector3>& a, const std::vector<Vector
     return largest;
 }
 
+// The displacement of a turn by `degrees` about the z axis through `centre`, in the x-y plane.
+std::function<Vector3(const Vector3&)> inPlaneTurn(double degrees, Vector3 centre)
+{
+    const Matrix3 turn = planarRotation(degrees * M_PI / 180.0);
+    return [turn, centre](const Vector3& x) {
+        Vector3 relative = x - centre;
+        relative.z = 0.0;
+        Vector3 moved = turn * relative - relative;
+        moved.z = 0.0;
+        return moved;
+    };
+}
+
 void expectSameOnAllRanks(const PolyMesh& mesh, const std::string& moving,
                           const std::function<Vector3(const Vector3&)>& displacementOf, double cellSize,
                           const std::vector<std::string>& variants)
@@ -134,16 +147,7 @@ TEST(ParallelSolve, TwoDimensionalAirfoilLikeTurnMatchesTheSerialSolve)
 {
     // Pseudo-3D quads, the bottom edge turned 8° about its middle, the rest held.
     const PolyMesh mesh = makeExtruded2D(24, 16, {0, 0, 0}, {2.4, 1.6, 0.1});
-    const Matrix3 turn = planarRotation(8.0 * M_PI / 180.0);
-    const Vector3 centre{1.2, 0.0, 0.0};
-    auto displacementOf = [&](const Vector3& x) {
-        Vector3 relative = x - centre;
-        relative.z = 0.0;
-        Vector3 moved = turn * relative - relative;
-        moved.z = 0.0;
-        return moved;
-    };
-    expectSameOnAllRanks(mesh, "bottom", displacementOf, 0.1,
+    expectSameOnAllRanks(mesh, "bottom", inPlaneTurn(8.0, {1.2, 0.0, 0.0}), 0.1,
                          {"subSteps 1;", "formulation linearized; subSteps 1;", "algorithm localGlobal; subSteps 1;",
                           "coupling decoupled; subSteps 1;", ""});
 }
@@ -174,15 +178,7 @@ TEST(ParallelSolve, IterativeLaplacianOnTheBoundaryLayerAirfoilReachesTheSerialF
     if (worldSize() == 1) GTEST_SKIP() << "needs mpiexec -n 2";
     const PolyMesh mesh =
         io::readPolyMesh(std::filesystem::path(RBM_TEST_DATA_DIR) / "airfoilBoundaryLayer" / "constant" / "polyMesh");
-    const Matrix3 turn = rotationFromVector({0.0, 0.0, 4.0 * M_PI / 180.0});
-    const Vector3 trailingEdge{1.0, 0.0, 0.0};
-    auto displacementOf = [&](const Vector3& x) {
-        Vector3 relative = x - trailingEdge;
-        relative.z = 0.0;
-        Vector3 moved = turn * relative - relative;
-        moved.z = 0.0;
-        return moved;
-    };
+    const auto displacementOf = inPlaneTurn(4.0, {1.0, 0.0, 0.0});  // about the trailing edge
     const Solved serial = solveOn(PETSC_COMM_SELF, mesh, "subSteps 1;", "airfoil", displacementOf);
     const Solved distributed =
         solveOn(PETSC_COMM_WORLD, mesh, "subSteps 1; linearSolver iterative;", "airfoil", displacementOf);
