@@ -597,39 +597,77 @@ void expectTheSameMinimum(const RbmResult& expected, const RbmResult& result)
     EXPECT_LT(largestDifference(result.displacement, expected.displacement), 1e-8);
 }
 
-TEST(ReducedNewton, TurnedStartIsKeptOnlyWhereItsEnergyIsLower)
+// One rigid body in a fixed frame: the nodes of the grid's central square (a body) turned by
+// `degrees` about its centre and shifted, the outer boundary fixed, the nodes between free.
+// Returns the problem's constraints and the prescribed displacement.
+struct BodyInBox {
+    std::vector<NodeConstraint> constraints;
+    std::vector<Vector3> prescribed;
+};
+BodyInBox bodyInBox(const GridCase& grid, int n, double degrees)
 {
-    // One rigid body in a fixed frame: the nodes of the grid's central square (a body) turned
-    // 30° about its centre and shifted, the outer boundary fixed, the nodes between free. The
-    // cold start then also tries the harmonic interpolation of the turn (every node turned by
-    // s θ and shifted by s t, s harmonic, 1 on the body, 0 on the outer boundary). On this
-    // even grid it starts higher than the interpolated displacements (energy 31 against 16.5),
-    // so the plain start is kept: the same steps and the same minimum as without the option.
-    // (On the boundary-layer airfoil the turned start is the lower one by 30×:
-    // RigidBodyMotionSolverTimeSteps.ColdAirfoilStepStartsFromTheTurnedInterpolation.)
-    const int n = 16;
-    const GridCase grid = gridCase(2, n, false, 29);
-    std::vector<NodeConstraint> constraints(grid.points.size());
-    std::vector<Vector3> prescribed(grid.points.size());
-    const double angle = 30.0 * 3.14159265358979 / 180.0;
+    BodyInBox box{std::vector<NodeConstraint>(grid.points.size()), std::vector<Vector3>(grid.points.size())};
+    const double angle = degrees * 3.14159265358979 / 180.0;
     for (std::size_t node = 0; node < grid.points.size(); ++node) {
         const int i = static_cast<int>(node) % (n + 1), j = static_cast<int>(node) / (n + 1);
         const bool outer = i == 0 || j == 0 || i == n || j == n;
         const bool body = i >= 6 && i <= 10 && j >= 6 && j <= 10;
         if (!outer && !body) continue;
-        constraints[node].kind = NodeKind::prescribed;
+        box.constraints[node].kind = NodeKind::prescribed;
         if (body) {
             const double dx = grid.points[node].x - 0.5, dy = grid.points[node].y - 0.5;
-            prescribed[node] = {std::cos(angle) * dx - std::sin(angle) * dy - dx + 0.03,
-                                std::sin(angle) * dx + std::cos(angle) * dy - dy - 0.02, 0.0};
+            box.prescribed[node] = {std::cos(angle) * dx - std::sin(angle) * dy - dx + 0.001 * degrees,
+                                    std::sin(angle) * dx + std::cos(angle) * dy - dy - 0.02 * degrees / 30.0, 0.0};
         }
     }
-    const RbmProblem problem(2, grid.points, grid.problem->graph(), constraints, EdgeWeighting::inverseDistanceSquared);
-    const auto [expected, result] = plainAndTurnedSolves(problem, roundOffOptions(), prescribed);
+    return box;
+}
+
+TEST(ReducedNewton, TurnedStartIsKeptOnlyWhereItsEnergyIsLower)
+{
+    // The body in the box turned 30° (and shifted): the cold start then also tries the harmonic
+    // interpolation of the turn (every node turned by s θ and shifted by s t, s harmonic, 1 on
+    // the body, 0 on the outer boundary). On this even grid it starts higher than the
+    // interpolated displacements (energy 31 against 16.5), so the plain start is kept: the same
+    // steps and the same minimum as without the option. (On the boundary-layer airfoil the
+    // turned start is the lower one by 30×:
+    // RigidBodyMotionSolverTimeSteps.ColdAirfoilStepStartsFromTheTurnedInterpolation.)
+    const int n = 16;
+    const GridCase grid = gridCase(2, n, false, 29);
+    const BodyInBox box = bodyInBox(grid, n, 30.0);
+    const RbmProblem problem(2, grid.points, grid.problem->graph(), box.constraints, EdgeWeighting::inverseDistanceSquared);
+    const auto [expected, result] = plainAndTurnedSolves(problem, roundOffOptions(), box.prescribed);
     expectTheSameMinimum(expected, result);
     EXPECT_EQ(result.iterations, expected.iterations);
     EXPECT_EQ(result.linearIterations, expected.linearIterations);
     EXPECT_EQ(result.displacement, expected.displacement);  // the same start, the same arithmetic
+}
+
+TEST(ReducedNewton, AWarmStartWithoutHistoryAlsoTriesTheTurnFromTheGuess)
+{
+    // From the result at 15° to 30°, warm-started without a history for the secant (the second
+    // step of a series, a restart): the start also tries the turn since the guess, interpolated
+    // harmonically (the body's motion from 15° to 30° turned in from the guess's positions).
+    // With and without, the same minimum as the cold solve at 30°, to round-off; the turned
+    // start is kept only where its energy is lower, so it never takes more iterations here.
+    const int n = 16;
+    const GridCase grid = gridCase(2, n, false, 29);
+    const BodyInBox first = bodyInBox(grid, n, 15.0), second = bodyInBox(grid, n, 30.0);
+    const RbmProblem problem(2, grid.points, grid.problem->graph(), first.constraints, EdgeWeighting::inverseDistanceSquared);
+    const RbmResult expected = ReducedNewtonSolver(problem, roundOffOptions()).solve(second.prescribed);
+    std::vector<RbmResult> warm;
+    for (const bool turned : {false, true}) {
+        ReducedNewtonOptions options = roundOffOptions();
+        options.turnedStart = turned;
+        ReducedNewtonSolver solver(problem, options);
+        const RbmResult guess = solver.solve(first.prescribed);
+        ASSERT_TRUE(guess.converged) << guess.reason;
+        warm.push_back(solver.solve(second.prescribed, &guess));
+        expectTheSameMinimum(expected, warm.back());
+    }
+    std::printf("body in a box, 15 -> 30 deg warm: %d Newton / %d CG plain, %d / %d with the turned start\n",
+                warm[0].iterations, warm[0].linearIterations, warm[1].iterations, warm[1].linearIterations);
+    EXPECT_LE(warm[1].linearIterations, warm[0].linearIterations);
 }
 
 TEST(ReducedNewton, In3DTheTurnedStartFollowsATwistToTheSameMinimum)

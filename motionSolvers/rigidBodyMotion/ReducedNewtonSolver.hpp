@@ -136,8 +136,11 @@ private:
     // firstPreconditioned: K⁻¹(−g) when the caller has it (else computed here).
     bool newtonDirection(std::span<const double> g, double forcing, const std::vector<double>* firstPreconditioned,
                          std::span<double> step, int& iterations, bool& negativeCurvature);
-    // Cold start for one rigid body in a fixed frame: see solve(). False where it does not apply.
-    bool turnedHarmonicStart(std::span<const Vector3> prescribedDisplacement, std::vector<Vector3>& u);
+    // Start for one rigid body in a fixed frame: see solve(). From the reference positions
+    // (cold) or from base's displacements (a warm start without history: the body's motion
+    // since base turned in). False where it does not apply.
+    bool turnedHarmonicStart(std::span<const Vector3> prescribedDisplacement, std::vector<Vector3>& u,
+                             std::span<const Vector3> base = {});
     // s = K⁻¹ b for one scalar right-hand side (the turned start's share of the body's motion):
     // K's factor, or CG preconditioned by the 3D cycle to a loose tolerance. False if CG failed.
     bool harmonicShare(std::span<const double> b, std::span<double> s);
