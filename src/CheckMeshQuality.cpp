@@ -448,7 +448,6 @@ std::optional<CheckMeshExtremes> computeExtrusionCheckMeshExtremes(const PolyMes
         positions[n] = {front.x, front.y, 0.0};
     }
     if (!extrusion) return std::nullopt;
-    const double middle = 0.5 * (frontPlane + backPlane);
 
     // Cell centres: the polygon's centroid (shoelace, about its first vertex) at mid-thickness.
     const Label cellCount = planar.cellCount();
@@ -470,12 +469,16 @@ std::optional<CheckMeshExtremes> computeExtrusionCheckMeshExtremes(const PolyMes
         }
         positive = positive && twiceArea > 0.0;
         const double scale = twiceArea > 0.0 ? 1.0 / (3.0 * twiceArea) : 0.0;
-        cellCentres[c] = frame.toGlobal({origin.x + sumX * scale, origin.y + sumY * scale, middle});
+        cellCentres[c] = {origin.x + sumX * scale, origin.y + sumY * scale, 0.0};
     }
     if (!positive) return std::nullopt;  // an inverted cell: OpenFOAM's decompositions decide
 
     // Side faces, one per 2D edge: centre at the edge's midpoint, area (dy, −dx) × thickness
-    // (the edge runs counter-clockwise around its owner, whose side the normal leaves).
+    // (the edge runs counter-clockwise around its owner, whose side the normal leaves). Every
+    // vector the measures take lies in the plane (centres all at mid-thickness), so they are
+    // evaluated in the plane's frame, with z = 0: the same values (the frame is orthonormal),
+    // and a face's four corners project onto its edge's two ends (the skewness' normalisation
+    // takes |direction · (corner − centre)| with an in-plane direction).
     const Label edgeCount = planar.edgeCount();
     const Label internalEdges = planar.internalEdgeCount();
     auto& edgeCosine = workspace.edgeCosine;
@@ -484,19 +487,18 @@ std::optional<CheckMeshExtremes> computeExtrusionCheckMeshExtremes(const PolyMes
     edgeSkew.resize(static_cast<std::size_t>(edgeCount));
 #pragma omp parallel for schedule(static) if (worthThreading(static_cast<std::size_t>(edgeCount)))
     for (Label e = 0; e < edgeCount; ++e) {
-        const Label f = twoD.faceOfEdge[e];
-        const auto [first, second] = planar.edge(e);
-        const Vector3& p0 = positions[first];
-        const Vector3& p1 = positions[second];
-        const Vector3 faceCentre = frame.toGlobal({0.5 * (p0.x + p1.x), 0.5 * (p0.y + p1.y), middle});
-        const Vector3 faceArea = frame.toGlobal({(p1.y - p0.y) * thickness, (p0.x - p1.x) * thickness, 0.0});  // linear
+        const std::span<const Label> ends(planar.edgePoints.data() + 2 * static_cast<std::size_t>(e), 2);
+        const Vector3& p0 = positions[ends[0]];
+        const Vector3& p1 = positions[ends[1]];
+        const Vector3 faceCentre{0.5 * (p0.x + p1.x), 0.5 * (p0.y + p1.y), 0.0};
+        const Vector3 faceArea{(p1.y - p0.y) * thickness, (p0.x - p1.x) * thickness, 0.0};
         const Vector3& ownerCentre = cellCentres[planar.edgeOwner[e]];
         if (e < internalEdges) {
             const Vector3& neighbourCentre = cellCentres[planar.edgeNeighbour[e]];
             edgeCosine[e] = faceNonOrthogonalityCosine(ownerCentre, neighbourCentre, faceArea);
-            edgeSkew[e] = faceSkewness(mesh.face(f), points, faceCentre, faceArea, ownerCentre, neighbourCentre);
+            edgeSkew[e] = faceSkewness(ends, positions, faceCentre, faceArea, ownerCentre, neighbourCentre);
         } else {
-            edgeSkew[e] = boundaryFaceSkewness(mesh.face(f), points, faceCentre, faceArea, ownerCentre);
+            edgeSkew[e] = boundaryFaceSkewness(ends, positions, faceCentre, faceArea, ownerCentre);
         }
     }
     return extremesOfFaceMeasures(edgeCosine, edgeSkew);  // the empty faces' skewness 0 adds nothing

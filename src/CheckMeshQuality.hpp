@@ -154,7 +154,7 @@ CheckMeshExtremes computeCheckMeshExtremes(const PolyMesh& mesh, std::span<const
 // do not hold (then computeCheckMeshExtremes). `workspace` keeps the work arrays.
 struct ExtrusionExtremesWorkspace {
     std::vector<Vector3> planarPositions;   // per 2D node, in the plane's frame
-    std::vector<Vector3> cellCentres;       // per cell, global
+    std::vector<Vector3> cellCentres;       // per cell, in the plane's frame (z = 0)
     std::vector<double> edgeCosine;
     std::vector<double> edgeSkew;
 };
