@@ -95,17 +95,31 @@ double PlanarReducedKernels::fitAndEnergy(std::span<const Vector3> displacement,
     return 0.5 * sum;
 }
 
+namespace {
+// (cos, sin) per node from the rotation matrices, into cosineSine (2 per node).
+void gatherCosineSine(std::span<const Matrix3> rotations, std::vector<double>& cosineSine)
+{
+    cosineSine.resize(2 * rotations.size());
+    for (std::size_t node = 0; node < rotations.size(); ++node) {
+        cosineSine[2 * node] = rotations[node].m[0][0];
+        cosineSine[2 * node + 1] = rotations[node].m[1][0];
+    }
+}
+} // namespace
+
 void PlanarReducedKernels::gradient(std::span<const Vector3> displacement, std::span<const Matrix3> rotations,
                                     std::span<double> g) const
 {
     const std::vector<int>& nodes = problem_.unknownNodes();
     const int m = unknownCount_;
     const Edge* edges = edges_.data();
+    gatherCosineSine(rotations, cosineSine_);
+    const double* cs = cosineSine_.data();
 #pragma omp parallel for schedule(static) if (worthThreading(edges_.size()))
     for (int a = 0; a < m; ++a) {
         const int k = nodes[a];
         const double ux = displacement[k].x, uy = displacement[k].y;
-        const double c = rotations[k].m[0][0], s = rotations[k].m[1][0];
+        const double c = cs[2 * static_cast<std::size_t>(k)], s = cs[2 * static_cast<std::size_t>(k) + 1];
         double gx = 0.0, gy = 0.0;
         for (int position = offsets_[a]; position < offsets_[a + 1]; ++position) {
             const Edge& edge = edges[position];
@@ -115,9 +129,9 @@ void PlanarReducedKernels::gradient(std::span<const Vector3> displacement, std::
             double tx = both * (ux - displacement[edge.node].x - edge.dx) + c * edge.dx - s * edge.dy;
             double ty = both * (uy - displacement[edge.node].y - edge.dy) + s * edge.dx + c * edge.dy;
             if (unknown) {
-                const Matrix3& rj = rotations[edge.node];
-                tx += rj.m[0][0] * edge.dx - rj.m[1][0] * edge.dy;
-                ty += rj.m[1][0] * edge.dx + rj.m[0][0] * edge.dy;
+                const double cj = cs[2 * static_cast<std::size_t>(edge.node)], sj = cs[2 * static_cast<std::size_t>(edge.node) + 1];
+                tx += cj * edge.dx - sj * edge.dy;
+                ty += sj * edge.dx + cj * edge.dy;
             }
             gx += edge.weight * tx;
             gy += edge.weight * ty;
@@ -134,11 +148,13 @@ void PlanarReducedKernels::prepareHessian(std::span<const Vector3> displacement,
     const Edge* edges = edges_.data();
     float* weighted = weightedRotated_.data();
     float* weightedBack = weightedBackRotated_.data();
+    gatherCosineSine(rotations, cosineSine_);
+    const double* cs = cosineSine_.data();
 #pragma omp parallel for schedule(static) if (worthThreading(edges_.size()))
     for (int a = 0; a < m; ++a) {
         const int i = nodes[a];
         const double ux = displacement[i].x, uy = displacement[i].y;
-        const double c = rotations[i].m[0][0], s = rotations[i].m[1][0];
+        const double c = cs[2 * static_cast<std::size_t>(i)], s = cs[2 * static_cast<std::size_t>(i) + 1];
         double curvature = 0.0;
         for (int position = offsets_[a]; position < offsets_[a + 1]; ++position) {
             const Edge& edge = edges[position];
@@ -153,7 +169,7 @@ void PlanarReducedKernels::prepareHessian(std::span<const Vector3> displacement,
             weighted[2 * static_cast<std::size_t>(position) + 1] = static_cast<float>(edge.weight * qy);
             double backX = 0.0, backY = 0.0;
             if (edge.compact != m) {
-                const double cj = rotations[edge.node].m[0][0], sj = rotations[edge.node].m[1][0];
+                const double cj = cs[2 * static_cast<std::size_t>(edge.node)], sj = cs[2 * static_cast<std::size_t>(edge.node) + 1];
                 backX = -(cj * edge.dx - sj * edge.dy);
                 backY = -(sj * edge.dx + cj * edge.dy);
             }
