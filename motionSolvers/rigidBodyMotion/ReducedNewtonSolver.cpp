@@ -33,6 +33,37 @@ double dotProduct(std::span<const double> a, std::span<const double> b)
 
 double euclideanNorm(std::span<const double> a) { return std::sqrt(dotProduct(a, a)); }
 
+// Modified Gram–Schmidt on `columns` (sums in index order: the same for any thread count):
+// an orthonormal basis of their span, each kept column's coordinates in it (R's columns,
+// r[i][i] the diagonal) and the kept columns' indices. A column whose part outside the span of
+// those before it is below 1e-6 of the longest column is left out (nearly dependent).
+struct ThinQr {
+    std::vector<std::vector<double>> basis, r;
+    std::vector<std::size_t> kept;
+};
+ThinQr orthonormalise(const std::vector<std::vector<double>>& columns)
+{
+    double longest = 0.0;
+    for (const std::vector<double>& column : columns) longest = std::max(longest, euclideanNorm(column));
+    ThinQr qr;
+    for (std::size_t j = 0; j < columns.size(); ++j) {
+        std::vector<double> v = columns[j];
+        std::vector<double> coordinates(qr.basis.size() + 1, 0.0);
+        for (std::size_t i = 0; i < qr.basis.size(); ++i) {
+            coordinates[i] = dotProduct(qr.basis[i], v);
+            for (std::size_t k = 0; k < v.size(); ++k) v[k] -= coordinates[i] * qr.basis[i][k];
+        }
+        const double remaining = euclideanNorm(v);
+        if (!(remaining > 1e-6 * longest)) continue;
+        coordinates.back() = remaining;
+        for (double& value : v) value /= remaining;
+        qr.basis.push_back(std::move(v));
+        qr.r.push_back(std::move(coordinates));
+        qr.kept.push_back(j);
+    }
+    return qr;
+}
+
 // Preconditioned conjugate gradients on A x = b from x = 0 to ‖r‖ ≤ relativeTolerance ‖b‖:
 // multiply(p, q) sets q = A p, precondition(r, z) sets z = M⁻¹ r. False on a direction of
 // non-positive curvature, or when maximumIterations do not reach the tolerance. work: four
@@ -670,10 +701,9 @@ std::vector<double> ReducedNewtonSolver::bestPredictorOnBoundary(std::span<const
                                                                  std::vector<double> secant) const
 {
     // Candidates c (G = u_0 + Σ_j c_j (u_0 − u_j)): the clamped secant; each older result j alone,
-    // c_j fitted; all together by least squares (modified Gram–Schmidt; a column whose part
-    // outside the span of those before it is below 1e-6 of the longest column is left out, as
-    // a result repeated at a reversal gives a zero difference). Every c_j clamped to ±2. The
-    // smallest misfit |b − G| on the prescribed nodes wins; within 1e-9 of it, the candidate
+    // c_j fitted; all together by least squares (orthonormalise: a nearly dependent column is
+    // left out, as a result repeated at a reversal gives a zero difference). Every c_j clamped
+    // to ±2. The smallest misfit |b − G| on the prescribed nodes wins; within 1e-9 of it, the candidate
     // that extrapolates least (the smallest largest |c_j|): where the boundary moves along one
     // fixed field, every candidate fits it exactly and the nearest result is the right start.
     const BoundaryDifferences d = boundaryDifferences(problem_, prescribedDisplacement, solutionHistory_);
@@ -688,25 +718,7 @@ std::vector<double> ReducedNewtonSolver::bestPredictorOnBoundary(std::span<const
         alone[j] = std::clamp(dotProduct(d.target, d.columns[j]) / squared, -2.0, 2.0);
         candidates.push_back(std::move(alone));
     }
-    double longest = 0.0;
-    for (const std::vector<double>& column : d.columns) longest = std::max(longest, euclideanNorm(column));
-    std::vector<std::vector<double>> basis, r;  // r[i]: column kept[i]'s coordinates in the basis
-    std::vector<std::size_t> kept;
-    for (std::size_t j = 0; j < columns; ++j) {
-        std::vector<double> v = d.columns[j];
-        std::vector<double> coordinates(basis.size() + 1, 0.0);
-        for (std::size_t i = 0; i < basis.size(); ++i) {
-            coordinates[i] = dotProduct(basis[i], v);
-            for (std::size_t k = 0; k < v.size(); ++k) v[k] -= coordinates[i] * basis[i][k];
-        }
-        const double remaining = euclideanNorm(v);
-        if (!(remaining > 1e-6 * longest)) continue;
-        coordinates.back() = remaining;
-        for (double& value : v) value /= remaining;
-        basis.push_back(std::move(v));
-        r.push_back(std::move(coordinates));
-        kept.push_back(j);
-    }
+    const auto [basis, r, kept] = orthonormalise(d.columns);
     std::vector<double> all(columns, 0.0);
     for (std::size_t i = basis.size(); i-- > 0;) {  // R c = Qᵀ target, R upper triangular
         double value = dotProduct(basis[i], d.target);
@@ -756,20 +768,8 @@ int ReducedNewtonSolver::subspaceStep(std::vector<Vector3>& u, std::vector<Matri
                                       std::vector<double>& g, const TrialMove& moveAlong, std::vector<Vector3>& trial,
                                       std::vector<Matrix3>& trialRotations, bool monitor)
 {
-    // An orthonormal basis of the corrections (modified Gram–Schmidt, sums in index order:
-    // the same for any thread count); nearly dependent ones are left out.
-    std::vector<std::vector<double>> basis;
-    for (const std::vector<double>& correction : recentCorrections_) {
-        std::vector<double> w = correction;
-        for (const std::vector<double>& q : basis) {
-            const double along = dotProduct(q, w);
-            for (std::size_t k = 0; k < w.size(); ++k) w[k] -= along * q[k];
-        }
-        const double length = euclideanNorm(w);
-        if (!(length > 1e-6 * euclideanNorm(correction))) continue;
-        for (double& value : w) value /= length;
-        basis.push_back(std::move(w));
-    }
+    // An orthonormal basis of the corrections; nearly dependent ones are left out.
+    const std::vector<std::vector<double>> basis = orthonormalise(recentCorrections_).basis;
     const int k = static_cast<int>(basis.size());
     if (k == 0) return 0;
     // A = Wᵀ S W and b = −Wᵀ ∇Ẽ; A by Cholesky (k ≤ a few), given up unless positive definite.
