@@ -18,6 +18,11 @@
 // of a node side by side) in the caller's vectors and deinterleaved per supernode, so every
 // entry of L is read once per solve for all components. The sweeps are then bound by reading
 // L (8.2 MB a sweep on the airfoil in single precision, about 6 GB/s on the 2-core machine).
+// On CPUs with AVX2 the products with the blocks below the supernodes keep eight rows' (forward)
+// or four columns' (backward) partial sums in registers instead of the work vector, with the
+// same operations in the same order (the same bits): a solve with two right-hand sides on a
+// 200 × 200 grid's factor 2.1 → 1.5 ms with the factor in cache; in a time step, where the
+// factor comes from memory, the gain is smaller (about 3.3 → 2.6 ms on the airfoil).
 
 // Built only where CHOLMOD's header was found (RBM_HAVE_CHOLMOD; Debian: libsuitesparse-dev,
 // which petsc-dev depends on). Sequential: one process's matrix.

@@ -195,6 +195,7 @@ private:
     // Work arrays (compact: dimension() entries per unknown node).
     std::vector<double> componentIn_, componentOut_, projected_;
     std::vector<double> inverseShortestEdge_;  // per unknown node, for displacementTolerance
+    std::vector<double> weightSums_, weightedLengths_;  // per unknown node: Σ_j w and Σ_j w |d| (round-off level)
     std::vector<int> boundaryNeighbours_;      // unknown nodes (compact) next to a prescribed one, then -1
     std::vector<double> cgResidual_, cgPreconditioned_, cgPreviousPreconditioned_, cgDirection_, cgProduct_;
     std::array<std::vector<double>, 4> cycleWork_;  // projectedCycleSolve's conjugate gradients
