@@ -1,5 +1,6 @@
 #include "SparseCholesky.hpp"
 
+#include "ReadAhead.hpp"
 #include "VectorInstructions.hpp"
 
 #include <algorithm>
@@ -332,7 +333,6 @@ void subtractTransposedBlockProductAvx(const float*, int, int, const double*, do
 // How far ahead of the current supernode the sweeps request L's entries (measured on the
 // pitching series: 1, 2, 4 and 8 KB gave 2.3, 2.2, 2.2 and 2.5 ms a back-substitution).
 constexpr std::ptrdiff_t factorLookaheadBytes = 2048;
-constexpr std::ptrdiff_t cacheLineBytes = 64;
 
 // The supernodal factor's index arrays (SparseCholesky's members), for the sweeps below.
 struct SupernodalLayout {
@@ -354,19 +354,16 @@ RBM_ALWAYS_INLINE void sweepSupernodes(const SupernodalLayout& factor, const Ent
     // L's entries are read once per sweep in address order (backwards in the second), a
     // supernode of the airfoil's factor about 2 KB: in a time step the factor comes from
     // memory, and the processor's own prefetching did not keep up with these short runs. So
-    // the sweeps ask for the entries a few supernodes ahead (factorLookaheadBytes past the
-    // current one): a back-substitution with two right-hand sides in the pitching series
-    // 3.1 → 2.3 ms with the register-blocked products above (2.65 ms without them).
-    const char* bytes = reinterpret_cast<const char*>(values);
-    const std::ptrdiff_t totalBytes = static_cast<std::ptrdiff_t>(factor.valueStart[factor.supernodes] * sizeof(Entry));
+    // the sweeps request the entries factorLookaheadBytes ahead (ReadAhead.hpp): a
+    // back-substitution with two right-hand sides in the pitching series 3.1 → 2.3 ms with the
+    // register-blocked products above (2.65 ms without them).
     auto byteOffset = [&](int supernode) {
         return static_cast<std::ptrdiff_t>(factor.valueStart[supernode] * sizeof(Entry));
     };
-    std::ptrdiff_t requested = 0;  // the entries before this byte have been asked for
+    ReadAhead forward(values, byteOffset(factor.supernodes), factorLookaheadBytes);
     // L y = P b, supernode by supernode.
     for (int s = 0; s < factor.supernodes; ++s) {
-        const std::ptrdiff_t target = std::min(totalBytes, byteOffset(s + 1) + factorLookaheadBytes);
-        for (; requested < target; requested += cacheLineBytes) __builtin_prefetch(bytes + requested, 0, 0);
+        forward.reach(byteOffset(s), byteOffset(s + 1));
         const int first = factor.supernodeStart[s], width = factor.supernodeStart[s + 1] - first;
         const int belowBegin = factor.belowStart[s], belowCount = factor.belowStart[s + 1] - belowBegin;
         const auto* entry = values + factor.valueStart[s];
@@ -399,11 +396,9 @@ RBM_ALWAYS_INLINE void sweepSupernodes(const SupernodalLayout& factor, const Ent
         }
     }
     // Lᵀ z = y, supernodes backwards.
-    requested = totalBytes;  // the entries from this byte on have been asked for
+    ReadAhead backward(values, byteOffset(factor.supernodes), factorLookaheadBytes, true);
     for (int s = factor.supernodes - 1; s >= 0; --s) {
-        const std::ptrdiff_t target = std::max<std::ptrdiff_t>(0, byteOffset(s) - factorLookaheadBytes);
-        for (; requested > target; requested -= cacheLineBytes)
-            __builtin_prefetch(bytes + std::max<std::ptrdiff_t>(0, requested - cacheLineBytes), 0, 0);
+        backward.reach(byteOffset(s), byteOffset(s + 1));
         const int first = factor.supernodeStart[s], width = factor.supernodeStart[s + 1] - first;
         const int belowBegin = factor.belowStart[s], belowCount = factor.belowStart[s + 1] - belowBegin;
         for (int r = 0; r < width; ++r)

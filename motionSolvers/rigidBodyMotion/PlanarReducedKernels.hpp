@@ -21,6 +21,7 @@
 
 #include "RbmEnergy.hpp"
 #include "RbmProblem.hpp"
+#include "ReadAhead.hpp"
 
 #include <span>
 #include <vector>
@@ -48,6 +49,10 @@ private:
         int node;     // the neighbour j
         int compact;  // its unknown index, or the zero slot (unknown node count) if prescribed
     };
+
+    // Requests of the edge records ahead of a pass (ReadAhead.hpp), one per thread.
+    ReadAhead edgeReadAhead() const;
+    void reachEdgesOf(ReadAhead& ahead, int a) const;  // a pass is about to read node a's edges
 
     const RbmProblem& problem_;
     int unknownCount_;
