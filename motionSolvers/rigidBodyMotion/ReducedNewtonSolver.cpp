@@ -178,8 +178,9 @@ ReducedNewtonSolver::ReducedNewtonSolver(const RbmProblem& problem, ReducedNewto
     // rbm's own factorisation and back-substitution wherever K would be factorised on one rank,
     // unless the user chose K's solver or package through PETSc's options (-rbm_reduced_…,
     // -rbm_… or global): then PETSc's KSP, as configured. On the airfoil a back-substitution of
-    // both components takes about 3.2 ms (supernodal rows, single-precision entries:
-    // SparseCholesky.hpp) against 4.1 ms with double entries, 5.9 ms with the compressed
+    // both components in a time step takes about 2.3 ms (supernodal rows, single-precision
+    // entries read ahead: SparseCholesky.hpp; 3.2 ms before the read-ahead) against 4.1 ms
+    // with double entries, 5.9 ms with the compressed
     // columns of the previous version and 9 ms with PETSc's MatMatSolve; the CG iterations are
     // the same (271 against 266 over the 20-step pitching series).
     bool userChoseSolver = false;
