@@ -59,7 +59,8 @@ CellNeighbourGraph graphOfCells(int nodeCount, const std::vector<std::vector<int
     return graph;
 }
 
-GridCase gridCase(int dimension, int n, bool mirror, unsigned seed)
+// slidingSides false: the sides x = 0 and x = 1 are free (unknown nodes) instead of sliding.
+GridCase gridCase(int dimension, int n, bool mirror, unsigned seed, bool slidingSides = true)
 {
     GridCase c;
     c.dimension = dimension;
@@ -106,6 +107,8 @@ GridCase gridCase(int dimension, int n, bool mirror, unsigned seed)
                                                    std::sin(angle) * dx + std::cos(angle) * dy - dy, 0.03}
                                          : Vector3{0.1 * (1.0 + dx), 0.04 * dx, 0.0};
             }
+        } else if (!slidingSides) {
+            continue;
         } else if (p.x == 0.0) {
             constraints[node] = {NodeKind::sliding, Vector3{-2.0, 0.0, 0.0}, mirror};
             c.prescribed[node] = {0.01, 0.0, 0.0};  // the plane itself moves by 0.01 along its normal
@@ -1025,6 +1028,56 @@ TEST(ReducedNewton, AfterATurningPointTheStartIsTheResultOfTheSameBoundary)
         EXPECT_EQ(results[7].linearIterations, 0) << dimension << "D";
         EXPECT_LT(largestDifference(results[7].displacement, results[3].displacement), 1e-12) << dimension << "D";
         EXPECT_GT(largestDifference(results[7].displacement, results[6].displacement), 1e-3) << dimension << "D";
+    }
+}
+
+TEST(ReducedNewton, ARigidBodysSeriesTakesThePredictorsHarmonicCorrectionFromFewExtensions)
+{
+    // The top turned by θ_k = θ sin(π k / 8) about its centre and shifted along x by
+    // 0.1 sin(π k / 8), k = 1…12: every change of the prescribed displacement between steps is
+    // (cos θ' − cos θ)(x − c) + (sin θ' − sin θ) ẑ × (x − c) + s e_x on the top and zero below,
+    // a vector of one fixed three-dimensional space. So at most three extensions K⁻¹ B m are
+    // kept, the later warm starts take their correction from them, and the series ends where
+    // the same series with a back-substitution at every step ends (both to round-off). (Free
+    // sides: with sliding nodes the boundary enters b through their offsets too, and no basis
+    // is kept.)
+    for (const int dimension : {2, 3}) {
+        const GridCase c = gridCase(dimension, dimension == 2 ? 14 : 5, false, 43, false);
+        const double amplitude = (dimension == 2 ? 25.0 : 30.0) * 3.14159265358979 / 180.0;
+        ReducedNewtonOptions withBasis;
+        withBasis.displacementTolerance = 0.0;
+        ReducedNewtonOptions withoutBasis = withBasis;
+        withoutBasis.harmonicBasis = false;
+        ReducedNewtonSolver fromBasis(*c.problem, withBasis), solving(*c.problem, withoutBasis);
+        RbmResult last, lastSolved;
+        const int steps = 12;
+        for (int k = 1; k <= steps; ++k) {
+            const double phase = std::sin(3.14159265358979 * k / 8.0);
+            std::vector<Vector3> boundary = c.prescribed;
+            for (int node = 0; node < c.problem->nodeCount(); ++node) {
+                const Vector3& p = c.points[node];
+                if ((dimension == 3 ? p.z : p.y) != 1.0) continue;
+                const double angle = amplitude * phase;
+                const double dx = p.x - 0.5, dy = dimension == 3 ? p.y - 0.5 : p.y - 1.0;
+                boundary[node] = {std::cos(angle) * dx - std::sin(angle) * dy - dx + 0.1 * phase,
+                                  std::sin(angle) * dx + std::cos(angle) * dy - dy, 0.0};
+            }
+            last = fromBasis.solve(boundary, k == 1 ? nullptr : &last);
+            lastSolved = solving.solve(boundary, k == 1 ? nullptr : &lastSolved);
+            ASSERT_TRUE(last.converged) << dimension << "D step " << k << ": " << last.reason;
+            ASSERT_TRUE(lastSolved.converged) << dimension << "D step " << k << ": " << lastSolved.reason;
+            EXPECT_LT(largestDifference(last.displacement, lastSolved.displacement), 1e-9) << dimension << "D step " << k;
+            // The same start to rounding: the same iterations (a wrong combination would be
+            // corrected by Newton, but not in the same steps).
+            EXPECT_EQ(last.iterations, lastSolved.iterations) << dimension << "D step " << k;
+            EXPECT_EQ(last.linearIterations, lastSolved.linearIterations) << dimension << "D step " << k;
+        }
+        EXPECT_LE(fromBasis.harmonicBasisSize(), 3u) << dimension << "D";
+        EXPECT_GE(fromBasis.correctionsFromHarmonicBasis(), steps - 1 - 3) << dimension << "D";
+        EXPECT_EQ(solving.harmonicBasisSize(), 0u) << dimension << "D";
+        EXPECT_EQ(solving.correctionsFromHarmonicBasis(), 0) << dimension << "D";
+        std::printf("%dD: %zu extensions kept, %d of %d warm starts took the correction from them\n", dimension,
+                    fromBasis.harmonicBasisSize(), fromBasis.correctionsFromHarmonicBasis(), steps - 1);
     }
 }
 

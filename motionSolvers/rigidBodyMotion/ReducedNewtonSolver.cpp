@@ -125,6 +125,9 @@ ReducedNewtonSolver::ReducedNewtonSolver(const RbmProblem& problem, ReducedNewto
         PetscInt memory = options_.correctionMemory;
         RBM_CHECK_PETSC(PetscOptionsGetInt(nullptr, "rbm_reduced_", "-correction_memory", &memory, nullptr));
         options_.correctionMemory = std::max<int>(0, static_cast<int>(memory));
+        PetscBool harmonicBasis = options_.harmonicBasis ? PETSC_TRUE : PETSC_FALSE;
+        RBM_CHECK_PETSC(PetscOptionsGetBool(nullptr, "rbm_reduced_", "-harmonic_basis", &harmonicBasis, nullptr));
+        options_.harmonicBasis = harmonicBasis == PETSC_TRUE;
     }
     // Per unknown node Σ_j w and Σ_j w |d| of the round-off level of ∇Ẽ (solve): the weights do
     // not change during the solver's life (K is factorised from them), so once here and not at
@@ -772,6 +775,80 @@ std::vector<double> ReducedNewtonSolver::bestPredictorOnBoundary(std::span<const
     return candidates[chosen];
 }
 
+bool ReducedNewtonSolver::harmonicChangeFromBasis(std::span<const Vector3> prescribed, std::span<const Vector3> base,
+                                                  std::vector<double>& boundaryChange, std::vector<double>& correction)
+{
+    boundaryChange.clear();
+    // Only where K⁻¹ is one fixed linear map (a factorisation, or the 3D cycle without sliding
+    // nodes, not an inner iteration) and the boundary enters b linearly (no sliding offsets),
+    // and where the kept extensions stay small against the problem (12 of them).
+    const int dim = problem_.dimension();
+    const std::size_t size = static_cast<std::size_t>(problem_.unknownNodeCount()) * dim;
+    const bool linear = cholesky_ || (threeVectorCycle_ && !vectorSystem_ && dim == 3);
+    if (!options_.harmonicBasis || !linear || problem_.hasSlidingNodes() || size > maximumHarmonicBasisEntries)
+        return false;
+    if (prescribedNodes_.empty())
+        for (int node = 0; node < problem_.nodeCount(); ++node)
+            if (!problem_.isUnknown(node)) prescribedNodes_.push_back(node);
+    boundaryChange.resize(prescribedNodes_.size() * dim);
+    double scale = 0.0;  // |new| + |base| on the prescribed nodes
+    {
+        double newSquared = 0.0, baseSquared = 0.0;
+        for (std::size_t p = 0; p < prescribedNodes_.size(); ++p)
+            for (int q = 0; q < dim; ++q) {
+                const double value = prescribed[prescribedNodes_[p]][q], guess = base[prescribedNodes_[p]][q];
+                boundaryChange[p * dim + q] = value - guess;
+                newSquared += value * value;
+                baseSquared += guess * guess;
+            }
+        scale = std::sqrt(newSquared) + std::sqrt(baseSquared);
+    }
+    // A change at the rounding level of the displacements (the predictor at a reversal of the
+    // motion reproduces an earlier boundary): no correction, and no noise kept as a direction.
+    if (euclideanNorm(boundaryChange) <= roundingChangeShare * scale) {
+        correction.assign(size, 0.0);
+        ++correctionsFromHarmonicBasis_;
+        return true;
+    }
+    // The change's coordinates in the orthonormal basis of the changes met before, and what is
+    // left outside it (two Gram–Schmidt passes: the part left can be small against the change).
+    std::vector<double> left = boundaryChange;
+    std::vector<double> coordinates(boundaryBasis_.size(), 0.0);
+    for (int pass = 0; pass < 2; ++pass)
+        for (std::size_t i = 0; i < boundaryBasis_.size(); ++i) {
+            const double c = dotProduct(boundaryBasis_[i], left);
+            coordinates[i] += c;
+            for (std::size_t k = 0; k < left.size(); ++k) left[k] -= c * boundaryBasis_[i][k];
+        }
+    const double changeNorm = euclideanNorm(boundaryChange);
+    if (euclideanNorm(left) > harmonicBasisTolerance * changeNorm) return false;
+    correction.assign(size, 0.0);
+    for (std::size_t i = 0; i < boundaryBasis_.size(); ++i)
+        for (std::size_t k = 0; k < size; ++k) correction[k] += coordinates[i] * harmonicBasis_[i][k];
+    ++correctionsFromHarmonicBasis_;
+    return true;
+}
+
+void ReducedNewtonSolver::rememberHarmonicChange(std::vector<double> boundaryChange, std::span<const double> correction)
+{
+    if (boundaryChange.empty() || boundaryBasis_.size() >= maximumHarmonicBasisSize) return;
+    // The part of the change outside the basis, normed, and K⁻¹ B of it: the same combination
+    // of `correction` (K⁻¹ B of the whole change) and the kept extensions.
+    std::vector<double> extension(correction.begin(), correction.end());
+    for (int pass = 0; pass < 2; ++pass)
+        for (std::size_t i = 0; i < boundaryBasis_.size(); ++i) {
+            const double c = dotProduct(boundaryBasis_[i], boundaryChange);
+            for (std::size_t k = 0; k < boundaryChange.size(); ++k) boundaryChange[k] -= c * boundaryBasis_[i][k];
+            for (std::size_t k = 0; k < extension.size(); ++k) extension[k] -= c * harmonicBasis_[i][k];
+        }
+    const double leftNorm = euclideanNorm(boundaryChange);
+    if (!(leftNorm > 0.0)) return;
+    for (double& value : boundaryChange) value /= leftNorm;
+    for (double& value : extension) value /= leftNorm;
+    boundaryBasis_.push_back(std::move(boundaryChange));
+    harmonicBasis_.push_back(std::move(extension));
+}
+
 namespace {
 // A subspace step, or a correction kept for it, matters when it moves some node by more than
 // this many displacement tolerances of its shortest edge (below, the displacement test and
@@ -953,10 +1030,17 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
         }
         std::vector<double> baseOffset(size);
         problem_.slidingOffset(base, baseOffset, dim);
-        std::vector<double> change = boundaryRightHandSide(prescribedDisplacement, offset);
-        const std::vector<double> previous = boundaryRightHandSide(base, baseOffset);
-        for (std::size_t k = 0; k < size; ++k) change[k] -= previous[k];
-        if (!precondition(change, correction)) failure = "DIVERGED_LINEAR_SOLVE (harmonic predictor)";
+        // K⁻¹ of the change is linear in the boundary's change (without sliding nodes): taken
+        // from the extensions of the changes met before where the new one is their combination
+        // (harmonicChangeFromBasis), solved otherwise.
+        std::vector<double> boundaryChange;
+        if (!harmonicChangeFromBasis(prescribedDisplacement, base, boundaryChange, correction)) {
+            std::vector<double> change = boundaryRightHandSide(prescribedDisplacement, offset);
+            const std::vector<double> previous = boundaryRightHandSide(base, baseOffset);
+            for (std::size_t k = 0; k < size; ++k) change[k] -= previous[k];
+            if (!precondition(change, correction)) failure = "DIVERGED_LINEAR_SOLVE (harmonic predictor)";
+            else rememberHarmonicChange(std::move(boundaryChange), correction);
+        }
         for (int a = 0; a < m; ++a) {
             const Vector3 guess = flat(base[nodes[a]]);
             for (int q = 0; q < dim; ++q) {

@@ -106,6 +106,10 @@ struct ReducedNewtonOptions {
     // correction lies within 1.5 % of the previous one's direction (Euclidean norm) and within
     // 0.1 % of the span of the last two.
     int correctionMemory = 3;
+    // Warm starts: the harmonic correction of the predictor from the extensions of earlier
+    // boundary changes where the new change is their combination (harmonicChangeFromBasis;
+    // false: a back-substitution at every step, for tests; -rbm_reduced_harmonic_basis false).
+    bool harmonicBasis = true;
 };
 
 class ReducedNewtonSolver : public RbmSolver {
@@ -115,6 +119,10 @@ public:
 
     const RbmProblem& problem() const override { return problem_; }
     RbmResult solve(std::span<const Vector3> prescribedDisplacement, const RbmState* initialGuess = nullptr) override;
+    // The extensions of boundary changes kept (ReducedNewtonOptions::harmonicBasis), and the
+    // warm starts that took their correction from them instead of a back-substitution.
+    std::size_t harmonicBasisSize() const { return harmonicBasis_.size(); }
+    int correctionsFromHarmonicBasis() const { return correctionsFromHarmonicBasis_; }
 
     // Ẽ, its projected gradient and S v at node displacements u (one per node), for tests.
     double reducedEnergy(std::span<const Vector3> displacement);
@@ -156,6 +164,17 @@ private:
     int subspaceStep(std::vector<Vector3>& u, std::vector<Matrix3>& rotations, double& energy, std::vector<double>& g,
                      const TrialMove& moveAlong, std::vector<Vector3>& trial, std::vector<Matrix3>& trialRotations,
                      bool monitor);
+    // The warm start's harmonic correction K⁻¹ (b(new) − b(base)) without a back-substitution:
+    // where the prescribed change (new − base on the prescribed nodes, into boundaryChange) is a
+    // combination of the changes met before, the same combination of their extensions
+    // (harmonicBasis_). On a rigid body's boundary every change lies in one small space (2D:
+    // the body's points, their turn by 90° and the two translations, four vectors), so after
+    // the first steps of a time series none needs a solve. False where not applicable or where
+    // the change leaves the basis; then the caller solves and hands the result to
+    // rememberHarmonicChange.
+    bool harmonicChangeFromBasis(std::span<const Vector3> prescribed, std::span<const Vector3> base,
+                                 std::vector<double>& boundaryChange, std::vector<double>& correction);
+    void rememberHarmonicChange(std::vector<double> boundaryChange, std::span<const double> correction);
     // max over unknown nodes of |v_node| / (the node's shortest edge), v compact.
     double largestRelativeDisplacement(std::span<const double> v) const;
 
@@ -192,6 +211,20 @@ private:
     // The last Newton corrections (result − predictor, compact), newest first, for the
     // subspace step of warm starts (ReducedNewtonOptions::correctionMemory).
     std::vector<std::vector<double>> recentCorrections_;
+    // harmonicChangeFromBasis: orthonormal prescribed changes (dimension() entries per prescribed
+    // node, in prescribedNodes_ order) and K⁻¹ B of each (compact); at most 12 (a 3D rigid motion's
+    // space), kept only while one extension has at most maximumHarmonicBasisEntries entries.
+    std::vector<int> prescribedNodes_;
+    std::vector<std::vector<double>> boundaryBasis_, harmonicBasis_;
+    static constexpr std::size_t maximumHarmonicBasisSize = 12;
+    static constexpr std::size_t maximumHarmonicBasisEntries = 1 << 20;  // 8 MiB an extension, 96 MiB at most
+    // A change counts as a combination when what is left outside the basis is below this share
+    // of it (rounding of rotated coordinates is about 1e-13 of the change; the start only needs
+    // to be close, Newton ends at the same minimum).
+    static constexpr double harmonicBasisTolerance = 1e-9;
+    // A change below this share of the displacements themselves is rounding: no correction.
+    static constexpr double roundingChangeShare = 1e-12;
+    int correctionsFromHarmonicBasis_ = 0;
     // Work arrays (compact: dimension() entries per unknown node).
     std::vector<double> componentIn_, componentOut_, projected_;
     std::vector<double> inverseShortestEdge_;  // per unknown node, for displacementTolerance
