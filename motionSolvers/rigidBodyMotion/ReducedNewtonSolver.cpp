@@ -1076,7 +1076,6 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
             for (int q = 0; q < dim; ++q) values[static_cast<std::size_t>(a) * dim + q] = displacement[nodes[a]][q];
         return values;
     };
-    const std::vector<double> predicted = chained ? compactUnknowns(u) : std::vector<double>{};
     std::vector<double> g(size), trialGradient(size), step(size);
     std::vector<double> negativeGradient(size), estimatedCorrection(size);  // the displacement test
     double energy = fitAndEnergy(u, rotations);
@@ -1107,6 +1106,9 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
             }
         }
     }
+    // The start actually taken (after the turned one's choice): the step's Newton correction
+    // is the result minus it (the subspace step of later steps).
+    const std::vector<double> predicted = compactUnknowns(u);
     gradient(u, rotations, g);
     double gradientNorm = euclideanNorm(g);
     const double tolerance = std::max(absoluteTolerance_, options_.relativeTolerance * gradientNorm);
@@ -1142,7 +1144,11 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
     std::string reason = failure;
     result.converged = false;
     int firstNewtonIteration = 0;  // after the subspace step, Newton's forcing starts afresh
-    bool subspaceTried = !chained;
+    // The subspace step: along a chain, in the span of the chain's own corrections (the
+    // secant predictor's misses); a warm start outside a chain (the second step of a series,
+    // the first after a restart), in that of the last solve's (the miss of its turned start).
+    const bool correctionsFit = chained == correctionsFromChain_;
+    bool subspaceTried = !initialGuess || recentCorrections_.empty() || !correctionsFit;
     for (int iteration = 0; failure.empty(); ++iteration) {
         if (!std::isfinite(energy) || !std::isfinite(gradientNorm)) {
             reason = "DIVERGED_FNORM_NAN";
@@ -1281,8 +1287,11 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
 
     // History of the predictor: only along a chain of warm starts from own results.
     if (!initialGuess) solutionHistory_.clear();
-    // The corrections of converged chained steps, newest first (a reversal's zero one adds nothing).
-    if (!chained || !result.converged || options_.correctionMemory <= 0) {
+    // The corrections of converged steps, newest first (a reversal's zero one adds nothing); a
+    // solve that does not continue a chain, or the first of a chain, starts the list afresh.
+    if (!chained || !correctionsFit) recentCorrections_.clear();
+    correctionsFromChain_ = chained;
+    if (!result.converged || options_.correctionMemory <= 0) {
         recentCorrections_.clear();
     } else {
         std::vector<double> newCorrection = compactUnknowns(u);

@@ -211,6 +211,7 @@ private:
     // The last Newton corrections (result − predictor, compact), newest first, for the
     // subspace step of warm starts (ReducedNewtonOptions::correctionMemory).
     std::vector<std::vector<double>> recentCorrections_;
+    bool correctionsFromChain_ = false;  // recentCorrections_ are a chain's (else one unchained solve's)
     // harmonicChangeFromBasis: orthonormal prescribed changes (dimension() entries per prescribed
     // node, in prescribedNodes_ order) and K⁻¹ B of each (compact); at most 12 (a 3D rigid motion's
     // space), kept only while one extension has at most maximumHarmonicBasisEntries entries.
