@@ -901,6 +901,12 @@ int ReducedNewtonSolver::subspaceStep(std::vector<Vector3>& u, std::vector<Matri
     for (int j = 0; j < k; ++j)
         for (std::size_t q = 0; q < step.size(); ++q) step[q] += c[j] * basis[j][q];
     const double slope = dotProduct(g, step);  // −bᵀA⁻¹b < 0
+    // A decrease the energy's rounding cannot show (a start at the minimum already: a warm start
+    // from the solution, or one solved to round-off): not taken.
+    if (!(-0.5 * slope > 1e-13 * std::abs(energy))) {
+        if (monitor) std::printf("  reduced Newton, subspace of %d correction(s): decrease at rounding level, not taken\n", k);
+        return 0;
+    }
     if (options_.displacementTolerance > 0.0 &&
         largestRelativeDisplacement(step) <= significantCorrection * options_.displacementTolerance) {
         if (monitor) std::printf("  reduced Newton, subspace of %d correction(s): step within 10 tolerances, not taken\n", k);
