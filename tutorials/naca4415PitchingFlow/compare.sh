@@ -155,7 +155,7 @@ for m in "${motions[@]}"; do
         if ($i=="wall") w+=$(i+1)
       }
     }
-    END{ if (n == 0) print "—"; else printf "%d steps: min mean-ratio quality %.4f (t = %s), max non-orthogonality %.2f° (t = %s), inverted %d; motion wall %.2f s per step", n, q, tq, a, ta, inv, w/n }' "$f/log.pimpleFoam")
+    END{ if (n == 0) print "—"; else printf "%d steps: min mean-ratio quality %.4f (t = %s), max non-orthogonality %.2f° (t = %s), inverted %d; motion wall %.3f s per step", n, q, tq, a, ta, inv, w/n }' "$f/log.pimpleFoam")
 done
 
 cell() { # cell <motion> <key> [field]: a table cell, "not run" without the plugin
