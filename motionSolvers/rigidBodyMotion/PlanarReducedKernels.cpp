@@ -60,15 +60,20 @@ PlanarReducedKernels::PlanarReducedKernels(const RbmProblem& problem)
     turn_.assign(static_cast<std::size_t>(m) + 1, 0.0);
 }
 
-ReadAhead PlanarReducedKernels::edgeReadAhead() const
-{
-    return ReadAhead(edges_.data(), static_cast<std::ptrdiff_t>(edges_.size() * sizeof(Edge)), edgeLookaheadBytes);
-}
-
-void PlanarReducedKernels::reachEdgesOf(ReadAhead& ahead, int a) const
+template <typename Body>
+void PlanarReducedKernels::forEachUnknownNode(Body&& body) const
 {
     constexpr auto recordBytes = static_cast<std::ptrdiff_t>(sizeof(Edge));
-    ahead.reach(offsets_[a] * recordBytes, offsets_[a + 1] * recordBytes);
+#pragma omp parallel if (worthThreading(edges_.size()))
+    {
+        // One per thread: a statically scheduled thread reads its own run of nodes.
+        ReadAhead ahead(edges_.data(), static_cast<std::ptrdiff_t>(edges_.size()) * recordBytes, edgeLookaheadBytes);
+#pragma omp for schedule(static)
+        for (int a = 0; a < unknownCount_; ++a) {
+            ahead.reach(offsets_[a] * recordBytes, offsets_[a + 1] * recordBytes);
+            body(a);
+        }
+    }
 }
 
 double PlanarReducedKernels::fitAndEnergy(std::span<const Vector3> displacement, std::vector<Matrix3>& rotations)
@@ -77,43 +82,37 @@ double PlanarReducedKernels::fitAndEnergy(std::span<const Vector3> displacement,
     const std::vector<int>& nodes = problem_.unknownNodes();
     const int m = unknownCount_;
     const Edge* edges = edges_.data();
-#pragma omp parallel if (worthThreading(edges_.size()))
-    {
-        ReadAhead ahead = edgeReadAhead();
-#pragma omp for schedule(static)
-        for (int a = 0; a < m; ++a) {
-            reachEdgesOf(ahead, a);
-            const int i = nodes[a];
-            const double ux = displacement[i].x, uy = displacement[i].y;
-            double crossSum = 0.0, dotSum = 0.0;
-            for (int position = offsets_[a]; position < offsets_[a + 1]; ++position) {
-                const Edge& edge = edges[position];
-                const double ex = edge.dx + displacement[edge.node].x - ux;
-                const double ey = edge.dy + displacement[edge.node].y - uy;
-                crossSum += edge.weight * (edge.dx * ey - edge.dy * ex);
-                dotSum += edge.weight * (edge.dx * ex + edge.dy * ey);
-            }
-            // The planar local step (LocalGlobalSolver: bestPlanarAngle, atan2(cross, dot)), as its
-            // cosine and sine directly: one square root instead of atan2, cos and sin (3 % of a
-            // pitching run).
-            const double length = std::sqrt(crossSum * crossSum + dotSum * dotSum);
-            const double c = length > 0.0 ? dotSum / length : 1.0, s = length > 0.0 ? crossSum / length : 0.0;
-            double energy = 0.0;
-            for (int position = offsets_[a]; position < offsets_[a + 1]; ++position) {
-                const Edge& edge = edges[position];
-                const double rx = edge.dx + displacement[edge.node].x - ux - (c * edge.dx - s * edge.dy);
-                const double ry = edge.dy + displacement[edge.node].y - uy - (s * edge.dx + c * edge.dy);
-                energy += edge.weight * (rx * rx + ry * ry);
-            }
-            nodeEnergy_[a] = energy;
-            Matrix3& r = rotations[i];
-            r = Matrix3::identity();
-            r.m[0][0] = c;
-            r.m[0][1] = -s;
-            r.m[1][0] = s;
-            r.m[1][1] = c;
+    forEachUnknownNode([&](int a) {
+        const int i = nodes[a];
+        const double ux = displacement[i].x, uy = displacement[i].y;
+        double crossSum = 0.0, dotSum = 0.0;
+        for (int position = offsets_[a]; position < offsets_[a + 1]; ++position) {
+            const Edge& edge = edges[position];
+            const double ex = edge.dx + displacement[edge.node].x - ux;
+            const double ey = edge.dy + displacement[edge.node].y - uy;
+            crossSum += edge.weight * (edge.dx * ey - edge.dy * ex);
+            dotSum += edge.weight * (edge.dx * ex + edge.dy * ey);
         }
-    }
+        // The planar local step (LocalGlobalSolver: bestPlanarAngle, atan2(cross, dot)), as its
+        // cosine and sine directly: one square root instead of atan2, cos and sin (3 % of a
+        // pitching run).
+        const double length = std::sqrt(crossSum * crossSum + dotSum * dotSum);
+        const double c = length > 0.0 ? dotSum / length : 1.0, s = length > 0.0 ? crossSum / length : 0.0;
+        double energy = 0.0;
+        for (int position = offsets_[a]; position < offsets_[a + 1]; ++position) {
+            const Edge& edge = edges[position];
+            const double rx = edge.dx + displacement[edge.node].x - ux - (c * edge.dx - s * edge.dy);
+            const double ry = edge.dy + displacement[edge.node].y - uy - (s * edge.dx + c * edge.dy);
+            energy += edge.weight * (rx * rx + ry * ry);
+        }
+        nodeEnergy_[a] = energy;
+        Matrix3& r = rotations[i];
+        r = Matrix3::identity();
+        r.m[0][0] = c;
+        r.m[0][1] = -s;
+        r.m[1][0] = s;
+        r.m[1][1] = c;
+    });
     double sum = 0.0;
     for (int a = 0; a < m; ++a) sum += nodeEnergy_[a];
     return 0.5 * sum;
@@ -139,35 +138,29 @@ void PlanarReducedKernels::gradient(std::span<const Vector3> displacement, std::
     const Edge* edges = edges_.data();
     gatherCosineSine(rotations, cosineSine_);
     const double* cs = cosineSine_.data();
-#pragma omp parallel if (worthThreading(edges_.size()))
-    {
-        ReadAhead ahead = edgeReadAhead();
-#pragma omp for schedule(static)
-        for (int a = 0; a < m; ++a) {
-            reachEdgesOf(ahead, a);
-            const int k = nodes[a];
-            const double ux = displacement[k].x, uy = displacement[k].y;
-            const double c = cs[2 * static_cast<std::size_t>(k)], s = cs[2 * static_cast<std::size_t>(k) + 1];
-            double gx = 0.0, gy = 0.0;
-            for (int position = offsets_[a]; position < offsets_[a + 1]; ++position) {
-                const Edge& edge = edges[position];
-                const bool unknown = edge.compact != m;
-                const double both = unknown ? 2.0 : 1.0;
-                // (1 + t)(u_k − u_j − d) + R_k d + t R_j d
-                double tx = both * (ux - displacement[edge.node].x - edge.dx) + c * edge.dx - s * edge.dy;
-                double ty = both * (uy - displacement[edge.node].y - edge.dy) + s * edge.dx + c * edge.dy;
-                if (unknown) {
-                    const double cj = cs[2 * static_cast<std::size_t>(edge.node)], sj = cs[2 * static_cast<std::size_t>(edge.node) + 1];
-                    tx += cj * edge.dx - sj * edge.dy;
-                    ty += sj * edge.dx + cj * edge.dy;
-                }
-                gx += edge.weight * tx;
-                gy += edge.weight * ty;
+    forEachUnknownNode([&](int a) {
+        const int k = nodes[a];
+        const double ux = displacement[k].x, uy = displacement[k].y;
+        const double c = cs[2 * static_cast<std::size_t>(k)], s = cs[2 * static_cast<std::size_t>(k) + 1];
+        double gx = 0.0, gy = 0.0;
+        for (int position = offsets_[a]; position < offsets_[a + 1]; ++position) {
+            const Edge& edge = edges[position];
+            const bool unknown = edge.compact != m;
+            const double both = unknown ? 2.0 : 1.0;
+            // (1 + t)(u_k − u_j − d) + R_k d + t R_j d
+            double tx = both * (ux - displacement[edge.node].x - edge.dx) + c * edge.dx - s * edge.dy;
+            double ty = both * (uy - displacement[edge.node].y - edge.dy) + s * edge.dx + c * edge.dy;
+            if (unknown) {
+                const double cj = cs[2 * static_cast<std::size_t>(edge.node)], sj = cs[2 * static_cast<std::size_t>(edge.node) + 1];
+                tx += cj * edge.dx - sj * edge.dy;
+                ty += sj * edge.dx + cj * edge.dy;
             }
-            g[2 * static_cast<std::size_t>(a)] = gx;
-            g[2 * static_cast<std::size_t>(a) + 1] = gy;
+            gx += edge.weight * tx;
+            gy += edge.weight * ty;
         }
-    }
+        g[2 * static_cast<std::size_t>(a)] = gx;
+        g[2 * static_cast<std::size_t>(a) + 1] = gy;
+    });
 }
 
 void PlanarReducedKernels::prepareHessian(std::span<const Vector3> displacement, std::span<const Matrix3> rotations)
@@ -179,41 +172,35 @@ void PlanarReducedKernels::prepareHessian(std::span<const Vector3> displacement,
     float* weightedBack = weightedBackRotated_.data();
     gatherCosineSine(rotations, cosineSine_);
     const double* cs = cosineSine_.data();
-#pragma omp parallel if (worthThreading(edges_.size()))
-    {
-        ReadAhead ahead = edgeReadAhead();
-#pragma omp for schedule(static)
-        for (int a = 0; a < m; ++a) {
-            reachEdgesOf(ahead, a);
-            const int i = nodes[a];
-            const double ux = displacement[i].x, uy = displacement[i].y;
-            const double c = cs[2 * static_cast<std::size_t>(i)], s = cs[2 * static_cast<std::size_t>(i) + 1];
-            double curvature = 0.0;
-            for (int position = offsets_[a]; position < offsets_[a + 1]; ++position) {
-                const Edge& edge = edges[position];
-                const double qx = c * edge.dx - s * edge.dy;
-                const double qy = s * edge.dx + c * edge.dy;
-                const double ex = edge.dx + displacement[edge.node].x - ux;
-                const double ey = edge.dy + displacement[edge.node].y - uy;
-                curvature += edge.weight * (qx * ex + qy * ey);
-                // w q and w q_back, q_back = R_j d_ji = −R_j d (zero for a prescribed j): once per
-                // Newton step instead of once per CG iteration.
-                weighted[2 * static_cast<std::size_t>(position)] = static_cast<float>(edge.weight * qx);
-                weighted[2 * static_cast<std::size_t>(position) + 1] = static_cast<float>(edge.weight * qy);
-                double backX = 0.0, backY = 0.0;
-                if (edge.compact != m) {
-                    const double cj = cs[2 * static_cast<std::size_t>(edge.node)], sj = cs[2 * static_cast<std::size_t>(edge.node) + 1];
-                    backX = -(cj * edge.dx - sj * edge.dy);
-                    backY = -(sj * edge.dx + cj * edge.dy);
-                }
-                weightedBack[2 * static_cast<std::size_t>(position)] = static_cast<float>(edge.weight * backX);
-                weightedBack[2 * static_cast<std::size_t>(position) + 1] = static_cast<float>(edge.weight * backY);
+    forEachUnknownNode([&](int a) {
+        const int i = nodes[a];
+        const double ux = displacement[i].x, uy = displacement[i].y;
+        const double c = cs[2 * static_cast<std::size_t>(i)], s = cs[2 * static_cast<std::size_t>(i) + 1];
+        double curvature = 0.0;
+        for (int position = offsets_[a]; position < offsets_[a + 1]; ++position) {
+            const Edge& edge = edges[position];
+            const double qx = c * edge.dx - s * edge.dy;
+            const double qy = s * edge.dx + c * edge.dy;
+            const double ex = edge.dx + displacement[edge.node].x - ux;
+            const double ey = edge.dy + displacement[edge.node].y - uy;
+            curvature += edge.weight * (qx * ex + qy * ey);
+            // w q and w q_back, q_back = R_j d_ji = −R_j d (zero for a prescribed j): once per
+            // Newton step instead of once per CG iteration.
+            weighted[2 * static_cast<std::size_t>(position)] = static_cast<float>(edge.weight * qx);
+            weighted[2 * static_cast<std::size_t>(position) + 1] = static_cast<float>(edge.weight * qy);
+            double backX = 0.0, backY = 0.0;
+            if (edge.compact != m) {
+                const double cj = cs[2 * static_cast<std::size_t>(edge.node)], sj = cs[2 * static_cast<std::size_t>(edge.node) + 1];
+                backX = -(cj * edge.dx - sj * edge.dy);
+                backY = -(sj * edge.dx + cj * edge.dy);
             }
-            // At a best fit H_δδ ≥ 0; where it is not positive the node's turn is left out (S = K
-            // there), which keeps S positive definite and the step a descent direction.
-            inverseCurvature_[a] = curvature > 0.0 ? 1.0 / curvature : 0.0;
+            weightedBack[2 * static_cast<std::size_t>(position)] = static_cast<float>(edge.weight * backX);
+            weightedBack[2 * static_cast<std::size_t>(position) + 1] = static_cast<float>(edge.weight * backY);
         }
-    }
+        // At a best fit H_δδ ≥ 0; where it is not positive the node's turn is left out (S = K
+        // there), which keeps S positive definite and the step a descent direction.
+        inverseCurvature_[a] = curvature > 0.0 ? 1.0 / curvature : 0.0;
+    });
 }
 
 void PlanarReducedKernels::applyHessian(std::span<const double> v, std::span<double> y)

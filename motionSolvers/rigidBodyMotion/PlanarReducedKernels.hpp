@@ -21,7 +21,6 @@
 
 #include "RbmEnergy.hpp"
 #include "RbmProblem.hpp"
-#include "ReadAhead.hpp"
 
 #include <span>
 #include <vector>
@@ -50,9 +49,10 @@ private:
         int compact;  // its unknown index, or the zero slot (unknown node count) if prescribed
     };
 
-    // Requests of the edge records ahead of a pass (ReadAhead.hpp), one per thread.
-    ReadAhead edgeReadAhead() const;
-    void reachEdgesOf(ReadAhead& ahead, int a) const;  // a pass is about to read node a's edges
+    // body(a) for every unknown node a, threads over the nodes in order, each requesting the
+    // edge records ahead of its node (ReadAhead.hpp): the loop of the fit, ∇Ẽ and the Hessian's data.
+    template <typename Body>
+    void forEachUnknownNode(Body&& body) const;
 
     const RbmProblem& problem_;
     int unknownCount_;
