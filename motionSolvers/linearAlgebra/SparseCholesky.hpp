@@ -29,6 +29,7 @@
 // which petsc-dev depends on). Sequential: one process's matrix.
 
 #include <cstddef>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -76,7 +77,12 @@ private:
     std::vector<int> belowRow_;
     std::vector<std::size_t> valueStart_;
     std::vector<double> value_;        // FactorPrecision::double_
-    std::vector<float> singleValue_;   // FactorPrecision::single
+    // FactorPrecision::single: CHOLMOD's own array of L's entries, rewritten in place and kept
+    // (constructor), so freed as SuiteSparse allocated it.
+    struct FreeEntries {
+        void operator()(float* entries) const;
+    };
+    std::unique_ptr<float[], FreeEntries> singleValue_;
     FactorPrecision precision_ = FactorPrecision::double_;
     mutable std::vector<double> work_;
 };
