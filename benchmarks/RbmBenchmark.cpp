@@ -904,8 +904,10 @@ Record runPitchingTask(const std::string& variant, int steps, const fs::path& ai
     record.set("constructSeconds", secondsSince(started));
 
     std::vector<double> solveTimes;
+    std::vector<double> checkedTimes;  // solve + quality check, before the points are written
     std::vector<double> stepTimes;
     std::vector<double> solveCpuTimes;
+    std::vector<double> checkedCpuTimes;
     std::vector<double> stepCpuTimes;
     Label maxInverted = 0;
     int subSteps = 0;
@@ -924,6 +926,8 @@ Record runPitchingTask(const std::string& variant, int steps, const fs::path& ai
         const std::vector<Vector3> points = solver.curPoints();
         io::StepLogRecord quality;
         assessor.assess(report, solver.pointDisplacement(), points, quality);
+        checkedTimes.push_back(secondsSince(stepStart));
+        checkedCpuTimes.push_back(processCpuSeconds() - stepCpuStart);
         io::writePolyMeshPoints(workDir, "pitching", points, writeOptions("binaryGzip"));
         stepTimes.push_back(secondsSince(stepStart));
         stepCpuTimes.push_back(processCpuSeconds() - stepCpuStart);
@@ -954,6 +958,8 @@ Record runPitchingTask(const std::string& variant, int steps, const fs::path& ai
     record.set("firstStepSolveSeconds", solveTimes.empty() ? nan : solveTimes.front());
     record.set("firstStepSeconds", stepTimes.empty() ? nan : stepTimes.front());
     record.set("additionalStepSolveSeconds", mean(solveTimes, 1));
+    record.set("additionalStepCheckedSeconds", mean(checkedTimes, 1));
+    record.set("additionalStepCheckedCpuSeconds", mean(checkedCpuTimes, 1));
     record.set("additionalStepSeconds", mean(stepTimes, 1));
     record.set("additionalStepSolveCpuSeconds", mean(solveCpuTimes, 1));
     record.set("additionalStepCpuSeconds", mean(stepCpuTimes, 1));
@@ -1736,18 +1742,20 @@ std::string markdownReport(const Results& results, const Options& options)
 
     if (!results.pitching.empty()) {
         out << "## Airfoil pitching (5° pitch + 0.05 plunge, one period), RigidBodyMotionSolver in one process\n\n";
-        out << "| variant | steps | set-up | 1st step | additional step: solve (CPU) | + quality + write (CPU) | max step | "
-               "sub-steps | max inverted | drift after period |\n";
-        out << "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+        out << "| variant | steps | set-up | 1st step | additional step: solve (CPU) | + quality (CPU) | + quality + write (CPU) | "
+               "max step | sub-steps | max inverted | drift after period |\n";
+        out << "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
         for (const Record& record : results.pitching) {
             if (record.flag("failed")) {
-                out << "| " << record.text("variant") << " | failed: " << record.text("error") << " |||||||||\n";
+                out << "| " << record.text("variant") << " | failed: " << record.text("error") << " ||||||||||\n";
                 continue;
             }
             out << "| " << record.text("variant") << " | " << count(record.number("steps")) << " | "
                 << seconds(record.number("constructSeconds")) << " | " << seconds(record.number("firstStepSeconds"))
                 << " | " << seconds(record.number("additionalStepSolveSeconds")) << " ("
                 << seconds(record.number("additionalStepSolveCpuSeconds")) << ") | "
+                << seconds(record.number("additionalStepCheckedSeconds")) << " ("
+                << seconds(record.number("additionalStepCheckedCpuSeconds")) << ") | "
                 << seconds(record.number("additionalStepSeconds")) << " ("
                 << seconds(record.number("additionalStepCpuSeconds")) << ") | "
                 << seconds(record.number("maxStepSolveSeconds")) << " | " << count(record.number("subSteps")) << " | "
@@ -1776,8 +1784,9 @@ std::string markdownReport(const Results& results, const Options& options)
                 << " | " << fixed(record.number("ratioNonlinear"), 2) << " |\n";
         }
         out << "\nmoveMesh wall = the whole process (start, read, solve, write; no quality check). rbm step = the "
-               "in-process pipeline above plus PETSc start-up (pitching rows: time per additional step). Ratio = rbm / "
-               "OpenFOAM.\n\n";
+               "in-process pipeline above plus PETSc start-up (pitching rows: time per additional step, solve and "
+               "quality check: OpenFOAM's pitching case writes at its end only, so rbm's per-step output is left out "
+               "here; with it, the pitching table's last time column). Ratio = rbm / OpenFOAM.\n\n";
     }
 
     if (!results.targets.empty()) {
@@ -1993,7 +2002,9 @@ int runBenchmark(const Options& options)
                         record.set("oneStepWallSeconds", one.number("wallSeconds"));
                         for (const Record& pitching : results.pitching) {
                             if (pitching.flag("failed")) continue;
-                            const double rbmStep = pitching.number("additionalStepSeconds");
+                            // Like for like: OpenFOAM's pitching case writes at its end only, so rbm's
+                            // step without its per-step output (solve + quality check).
+                            const double rbmStep = pitching.number("additionalStepCheckedSeconds");
                             if (pitching.text("variant") == "linearized") {
                                 record.set("rbmLinearizedSeconds", rbmStep);
                                 record.set("ratioLinearized", rbmStep / perStep);
