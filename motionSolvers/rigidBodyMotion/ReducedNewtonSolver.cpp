@@ -805,7 +805,8 @@ bool ReducedNewtonSolver::harmonicChangeFromBasis(std::span<const Vector3> presc
     }
     // A change at the rounding level of the displacements (the predictor at a reversal of the
     // motion reproduces an earlier boundary): no correction, and no noise kept as a direction.
-    if (euclideanNorm(boundaryChange) <= roundingChangeShare * scale) {
+    const double changeNorm = euclideanNorm(boundaryChange);
+    if (changeNorm <= roundingChangeShare * scale) {
         correction.assign(size, 0.0);
         ++correctionsFromHarmonicBasis_;
         return true;
@@ -820,7 +821,6 @@ bool ReducedNewtonSolver::harmonicChangeFromBasis(std::span<const Vector3> presc
             coordinates[i] += c;
             for (std::size_t k = 0; k < left.size(); ++k) left[k] -= c * boundaryBasis_[i][k];
         }
-    const double changeNorm = euclideanNorm(boundaryChange);
     if (euclideanNorm(left) > harmonicBasisTolerance * changeNorm) return false;
     correction.assign(size, 0.0);
     for (std::size_t i = 0; i < boundaryBasis_.size(); ++i)
