@@ -82,6 +82,24 @@ int threadCount()
 #endif
 }
 
+LibraryTeamsWithinThreadCount::LibraryTeamsWithinThreadCount(int teamSize)
+{
+#ifdef _OPENMP
+    if (threadCount() >= teamSize || omp_in_parallel()) return;
+    activeLevelsBefore_ = omp_get_max_active_levels();
+    omp_set_max_active_levels(0);
+#else
+    (void)teamSize;
+#endif
+}
+
+LibraryTeamsWithinThreadCount::~LibraryTeamsWithinThreadCount()
+{
+#ifdef _OPENMP
+    if (activeLevelsBefore_ >= 0) omp_set_max_active_levels(activeLevelsBefore_);
+#endif
+}
+
 int threadsAvailable()
 {
     int threads = 1;

@@ -51,6 +51,25 @@ void setThreadCount(int threads);
 // The most threads the next threaded loop will use (1 without OpenMP).
 int threadCount();
 
+// Within its scope, a library's OpenMP region that asks for a team of teamSize threads (a
+// num_threads clause, which overrides OMP_NUM_THREADS) runs on the calling thread whenever
+// rbm may use fewer than teamSize threads: the library then stays within rbm's thread count
+// instead of oversubscribing the cores. For CHOLMOD's factorisation (teamSize 4,
+// SparseCholesky.cpp), whose regions copy and clear supernodes, a team per large supernode
+// on a 2-core machine cost more than it saved: quad2D with 10^6 nodes, K's set-up 4.5-4.7 ->
+// 3.2 s with one thread and 3.8 -> 3.1 s with two (2-core AMD EPYC, 2026-11-26).
+// Restores OpenMP's max-active-levels on leaving. Nothing without OpenMP.
+class LibraryTeamsWithinThreadCount {
+public:
+    explicit LibraryTeamsWithinThreadCount(int teamSize);
+    ~LibraryTeamsWithinThreadCount();
+    LibraryTeamsWithinThreadCount(const LibraryTeamsWithinThreadCount&) = delete;
+    LibraryTeamsWithinThreadCount& operator=(const LibraryTeamsWithinThreadCount&) = delete;
+
+private:
+    int activeLevelsBefore_ = -1;   // -1: left as it was
+};
+
 // The threads the next threaded loop will really get: threadCount(), or fewer when OpenMP
 // adapts to the load (asks OpenMP with an empty parallel region, a few microseconds). For
 // loops whose threaded form costs more arithmetic than their serial one.

@@ -1,11 +1,13 @@
 // SparseCholesky: rbm's back-substitution on CHOLMOD's factor (motionSolvers/linearAlgebra).
 #include "SparseCholesky.hpp"
+#include "ThreadCount.hpp"
 #include "VectorInstructions.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <random>
 #include <stdexcept>
 #include <vector>
@@ -200,6 +202,57 @@ TEST(SparseCholesky, RefusesAnIndefiniteMatrixAndWrongSizes)
     EXPECT_THROW(factor.solve(wrong, out, 4), std::invalid_argument);
     std::vector<double> shortVector(b.n - 1), result(b.n);
     EXPECT_THROW(factor.solve(shortVector, result, 1), std::invalid_argument);
+}
+
+// Debian's CHOLMOD asks for a team of 4 threads in every large supernode of its factorisation,
+// whatever OMP_NUM_THREADS says; with rbm at 2 threads on a 2-core machine that team cost more
+// than it saved (ThreadCount.hpp). The factorisation must not start threads beyond rbm's count:
+// OpenMP keeps a team's threads for the next region, so this process' thread count after a
+// region of 2 threads must be the same after the factorisation.
+TEST(SparseCholesky, TheFactorisationStaysWithinRbmsThreadCount)
+{
+    if (!SparseCholesky::available()) GTEST_SKIP() << "this build has no CHOLMOD";
+#ifndef _OPENMP
+    GTEST_SKIP() << "built without OpenMP";
+#else
+    auto threadsOfThisProcess = [] {
+        std::size_t count = 0;
+        for ([[maybe_unused]] const auto& task : std::filesystem::directory_iterator("/proc/self/task")) ++count;
+        return count;
+    };
+    const int before = threadCount();
+    setThreadCount(2);
+    int teamSize = 0;
+#pragma omp parallel
+    {
+#pragma omp single
+        teamSize = omp_get_num_threads();
+    }
+    ASSERT_EQ(teamSize, 2);
+    const std::size_t threadsBefore = threadsOfThisProcess();
+    const Csr a = gridLaplacian(120);   // supernodes far above CHOLMOD's threshold of 1024 entries
+    const SparseCholesky factor(a.n, a.rowOffsets, a.columns, a.values);
+    EXPECT_EQ(threadsOfThisProcess(), threadsBefore) << "CHOLMOD started threads beyond rbm's 2";
+    // The same factor as with CHOLMOD's own team: a solve against a known solution.
+    std::vector<double> expected(a.n), rightHandSide, solution(a.n);
+    for (int i = 0; i < a.n; ++i) expected[i] = std::sin(0.01 * i);
+    rightHandSide = multiply(a, expected, 1);
+    factor.solve(rightHandSide, solution, 1);
+    for (int i = 0; i < a.n; ++i) ASSERT_NEAR(solution[i], expected[i], 1e-8) << i;
+    // With 4 threads allowed, CHOLMOD's team is its own again.
+    setThreadCount(4);
+    int teamOfFour = 0;
+    {
+        const LibraryTeamsWithinThreadCount withinThreadCount(4);
+#pragma omp parallel num_threads(4)
+        {
+#pragma omp single
+            teamOfFour = omp_get_num_threads();
+        }
+    }
+    EXPECT_EQ(teamOfFour, 4);
+    setThreadCount(before);
+#endif
 }
 
 } // namespace

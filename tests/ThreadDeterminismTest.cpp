@@ -410,6 +410,41 @@ TEST(ThreadCount, OneThreadHoldsForRegionsThatAskForMore)
 #endif
 }
 
+// A library region asking for a team larger than rbm's thread count runs on one thread inside
+// LibraryTeamsWithinThreadCount (CHOLMOD's factorisation), and gets its team again outside.
+TEST(ThreadCount, LibraryTeamsLargerThanTheThreadCountRunOnOneThreadInsideTheGuard)
+{
+#ifndef _OPENMP
+    GTEST_SKIP() << "built without OpenMP";
+#else
+    const int before = threadCount();
+    auto threadsAskingForFour = [] {
+        int seen = 0;
+#pragma omp parallel num_threads(4)
+        {
+#pragma omp single
+            seen = omp_get_num_threads();
+        }
+        return seen;
+    };
+    for (const int threads : {1, 2, 3}) {
+        setThreadCount(threads);
+        {
+            const LibraryTeamsWithinThreadCount withinThreadCount(4);
+            EXPECT_EQ(threadsAskingForFour(), 1) << threads << " thread(s)";
+        }
+        EXPECT_EQ(threadsAskingForFour(), threads == 1 ? 1 : 4) << "after the guard, " << threads << " thread(s)";
+        EXPECT_EQ(threadsInAParallelRegion(), threads);
+    }
+    setThreadCount(4);
+    {
+        const LibraryTeamsWithinThreadCount withinThreadCount(4);
+        EXPECT_EQ(threadsAskingForFour(), 4);   // within the count: the library's own team
+    }
+    setThreadCount(before);
+#endif
+}
+
 TEST(ThreadDeterminism, CellNeighbourGraphsAreTheSameForOneTwoAndThreeThreads)
 {
     const PolyMesh& mesh = airfoilMesh();

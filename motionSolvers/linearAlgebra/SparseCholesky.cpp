@@ -1,6 +1,7 @@
 #include "SparseCholesky.hpp"
 
 #include "ReadAhead.hpp"
+#include "ThreadCount.hpp"
 #include "VectorInstructions.hpp"
 
 #include <algorithm>
@@ -112,10 +113,16 @@ SparseCholesky::SparseCholesky(int n, std::span<const int> rowOffsets, std::span
     // Always supernodal, so that there is one layout to copy (a small matrix CHOLMOD would
     // factorise simplicially costs a few microseconds either way).
     session.common()->supernodal = CHOLMOD_SUPERNODAL;
-    session.factor_ = cholmod_analyze(session.matrix_, session.common());
-    session.check("ordering (cholmod_analyze)");
-    cholmod_factorize(session.matrix_, session.factor_, session.common());
-    session.check("factorising (cholmod_factorize)");
+    {
+        // Debian's CHOLMOD (SuiteSparse 5.12) asks for teams of CHOLMOD_OMP_NUM_THREADS,
+        // compiled as 4, whatever OMP_NUM_THREADS says (ThreadCount.hpp has the figures).
+        constexpr int cholmodTeamSize = 4;
+        const LibraryTeamsWithinThreadCount withinThreadCount(cholmodTeamSize);
+        session.factor_ = cholmod_analyze(session.matrix_, session.common());
+        session.check("ordering (cholmod_analyze)");
+        cholmod_factorize(session.matrix_, session.factor_, session.common());
+        session.check("factorising (cholmod_factorize)");
+    }
     if (session.common()->status == CHOLMOD_NOT_POSDEF || session.factor_->minor < static_cast<std::size_t>(n))
         throw std::runtime_error("sparse Cholesky: the matrix is not positive definite (column " +
                                  std::to_string(session.factor_->minor) + ")");
