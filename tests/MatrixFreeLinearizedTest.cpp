@@ -670,33 +670,88 @@ TEST(ReducedNewton, AWarmStartWithoutHistoryAlsoTriesTheTurnFromTheGuess)
     EXPECT_LE(warm[1].linearIterations, warm[0].linearIterations);
 }
 
-TEST(ReducedNewton, TheSecondStepOfASeriesTakesASubspaceStepAlongTheFirstStepsCorrection)
+TEST(ReducedNewton, AfterAColdSolveTheReferenceMeshIsTheResultBeforeIt)
 {
-    // A series 10° → 20° → 30° of the body in a box. The second solve is a warm start outside a
-    // chain (no history for the secant): its turned start misses the minimum by nearly the field
-    // the first solve's turned start missed by, so a Galerkin step along the first solve's
-    // Newton correction comes first. The third solve (the first of a chain) does not use it:
-    // the secant predictor misses differently. Against the same series without the subspace
-    // step (correctionMemory 0): the same minima to round-off, fewer CG iterations at the
-    // second step, the same iterations at the third.
+    // No displacement is the exact minimum for a boundary at rest, so a cold solve's result
+    // continues a chain from the reference mesh: the next warm start takes the secant predictor.
+    // (a) Back to rest after 10°: the secant is exactly −1, the predictor exactly zero, and the
+    // solve ends there without an iteration (outside a chain it started from the guess and
+    // iterated). (b) A series 10° → 12° → 14° (the default tolerance): the second step's Newton
+    // correction is a chain's, so the third step takes the subspace step along it: against the
+    // same series without kept corrections (correctionMemory 0), both within 10 tolerances of the
+    // minima, and fewer CG iterations at the third step.
     const int n = 16;
     const GridCase grid = gridCase(2, n, false, 29);
-    const std::vector<BodyInBox> bodies{bodyInBox(grid, n, 10.0), bodyInBox(grid, n, 20.0), bodyInBox(grid, n, 30.0)};
+    const BodyInBox tenDegrees = bodyInBox(grid, n, 10.0);
+    const RbmProblem problem(2, grid.points, grid.problem->graph(), tenDegrees.constraints, EdgeWeighting::inverseDistanceSquared);
+    {
+        ReducedNewtonSolver solver(problem, roundOffOptions());
+        const RbmResult turned = solver.solve(tenDegrees.prescribed);
+        ASSERT_TRUE(turned.converged) << turned.reason;
+        const RbmResult atRest = solver.solve(std::vector<Vector3>(grid.points.size()), &turned);
+        ASSERT_TRUE(atRest.converged) << atRest.reason;
+        EXPECT_EQ(atRest.iterations, 0);
+        EXPECT_EQ(atRest.linearIterations, 0);
+        EXPECT_EQ(largestDifference(atRest.displacement, std::vector<Vector3>(grid.points.size())), 0.0);
+    }
+    std::vector<std::vector<RbmResult>> series;
+    const std::vector<BodyInBox> steps{bodyInBox(grid, n, 10.0), bodyInBox(grid, n, 12.0), bodyInBox(grid, n, 14.0)};
+    for (const int memory : {0, 3}) {
+        ReducedNewtonOptions options;
+        options.correctionMemory = memory;
+        ReducedNewtonSolver solver(problem, options);
+        std::vector<RbmResult>& results = series.emplace_back();
+        for (std::size_t k = 0; k < steps.size(); ++k) {
+            results.push_back(solver.solve(steps[k].prescribed, k == 0 ? nullptr : &results.back()));
+            ASSERT_TRUE(results.back().converged) << "memory " << memory << ", step " << k + 1 << ": " << results.back().reason;
+        }
+    }
+    // Both within 10 displacement tolerances of the grid's spacing of the minimum solved to round-off.
+    const double bound = 10.0 * ReducedNewtonOptions{}.displacementTolerance / n;
+    for (std::size_t k = 0; k < steps.size(); ++k) {
+        const RbmResult exact = ReducedNewtonSolver(problem, roundOffOptions()).solve(steps[k].prescribed);
+        ASSERT_TRUE(exact.converged) << exact.reason;
+        for (const std::vector<RbmResult>& results : series)
+            EXPECT_LT(largestDifference(results[k].displacement, exact.displacement), bound) << "step " << k + 1;
+    }
+    std::printf("body in a box, 10 -> 12 -> 14 deg: third step %d Newton / %d CG without kept corrections, %d / %d with\n",
+                series[0][2].iterations, series[0][2].linearIterations, series[1][2].iterations,
+                series[1][2].linearIterations);
+    EXPECT_EQ(series[1][1].linearIterations, series[0][1].linearIterations);   // nothing kept yet
+    EXPECT_LT(series[1][2].linearIterations, series[0][2].linearIterations);
+}
+
+TEST(ReducedNewton, AfterARestartTheSecondStepTakesASubspaceStepAlongTheFirstStepsCorrection)
+{
+    // A restart: a new solver warm-started from another's result at 10° (no history: outside a
+    // chain), then 20° → 30° → 40°. Its second solve (30°) is a warm start outside a chain too
+    // (one result kept): its turned start misses the minimum by nearly the field the first
+    // solve's turned start missed by, so a Galerkin step along the first solve's Newton
+    // correction comes first. The solve after it (the first of a chain) does not use it: the
+    // secant predictor misses differently. Against the same restart without the subspace step
+    // (correctionMemory 0): the same minima to round-off, fewer CG iterations at 30°, the same
+    // iterations at 40°.
+    const int n = 16;
+    const GridCase grid = gridCase(2, n, false, 29);
+    const std::vector<BodyInBox> bodies{bodyInBox(grid, n, 10.0), bodyInBox(grid, n, 20.0), bodyInBox(grid, n, 30.0),
+                                        bodyInBox(grid, n, 40.0)};
     const RbmProblem problem(2, grid.points, grid.problem->graph(), bodies[0].constraints, EdgeWeighting::inverseDistanceSquared);
+    const RbmResult before = ReducedNewtonSolver(problem, roundOffOptions()).solve(bodies[0].prescribed);
+    ASSERT_TRUE(before.converged) << before.reason;
     std::vector<std::vector<RbmResult>> series;
     for (const int memory : {0, 3}) {
         ReducedNewtonOptions options = roundOffOptions();
         options.correctionMemory = memory;
-        ReducedNewtonSolver solver(problem, options);
+        ReducedNewtonSolver restarted(problem, options);
         std::vector<RbmResult>& results = series.emplace_back();
-        for (std::size_t k = 0; k < bodies.size(); ++k) {
-            results.push_back(solver.solve(bodies[k].prescribed, k == 0 ? nullptr : &results.back()));
-            ASSERT_TRUE(results.back().converged) << "memory " << memory << ", step " << k + 1 << ": " << results.back().reason;
+        for (std::size_t k = 1; k < bodies.size(); ++k) {
+            results.push_back(restarted.solve(bodies[k].prescribed, k == 1 ? &before : &results.back()));
+            ASSERT_TRUE(results.back().converged) << "memory " << memory << ", " << 10 * (k + 1) << " deg: " << results.back().reason;
         }
     }
-    for (std::size_t k = 0; k < bodies.size(); ++k) expectTheSameMinimum(series[0][k], series[1][k]);
-    std::printf("body in a box, 10 -> 20 -> 30 deg: second step %d Newton / %d CG without the subspace step, %d / %d "
-                "with it; third step %d / %d and %d / %d\n",
+    for (std::size_t k = 0; k < series[0].size(); ++k) expectTheSameMinimum(series[0][k], series[1][k]);
+    std::printf("body in a box, restart at 10 deg -> 20 -> 30 -> 40 deg: 30 deg %d Newton / %d CG without the subspace "
+                "step, %d / %d with it; 40 deg %d / %d and %d / %d\n",
                 series[0][1].iterations, series[0][1].linearIterations, series[1][1].iterations,
                 series[1][1].linearIterations, series[0][2].iterations, series[0][2].linearIterations,
                 series[1][2].iterations, series[1][2].linearIterations);
