@@ -721,6 +721,47 @@ TEST(ReducedNewton, AfterAColdSolveTheReferenceMeshIsTheResultBeforeIt)
     EXPECT_LT(series[1][2].linearIterations, series[0][2].linearIterations);
 }
 
+TEST(ReducedNewton, ABoundaryBackAtRestStartsFromTheReferenceMeshAndTheChainGoesOn)
+{
+    // 10° → 5° → 0° → −5° along a chain: at 0° the body is back at rest, which the reference mesh
+    // (no displacement) is its exact minimum, so the solve starts there and ends
+    // without an iteration, at no displacement exactly (with the secant's start: 4 Newton steps).
+    // The chain goes on: −5° reaches the cold solve's minimum (to round-off).
+    const int n = 16;
+    const GridCase grid = gridCase(2, n, false, 29);
+    const std::vector<BodyInBox> bodies{bodyInBox(grid, n, 10.0), bodyInBox(grid, n, 5.0), bodyInBox(grid, n, 0.0),
+                                        bodyInBox(grid, n, -5.0)};
+    const RbmProblem problem(2, grid.points, grid.problem->graph(), bodies[0].constraints, EdgeWeighting::inverseDistanceSquared);
+    ReducedNewtonSolver solver(problem, roundOffOptions());
+    std::vector<RbmResult> results;
+    for (std::size_t k = 0; k < bodies.size(); ++k) {
+        results.push_back(solver.solve(bodies[k].prescribed, k == 0 ? nullptr : &results.back()));
+        ASSERT_TRUE(results.back().converged) << "step " << k + 1 << ": " << results.back().reason;
+    }
+    const std::vector<Vector3> rest(grid.points.size());
+    EXPECT_EQ(results[2].iterations, 0);
+    EXPECT_EQ(results[2].linearIterations, 0);
+    EXPECT_EQ(largestDifference(results[2].displacement, rest), 0.0);
+    const RbmResult cold = ReducedNewtonSolver(problem, roundOffOptions()).solve(bodies[3].prescribed);
+    ASSERT_TRUE(cold.converged) << cold.reason;
+    EXPECT_NEAR(results[3].energy, cold.energy, 1e-10 * cold.energy);
+    EXPECT_LT(largestDifference(results[3].displacement, cold.displacement), 1e-8);
+    // With the default tolerance, 6° → 4° → 2° → 0° → −2°: the step at rest keeps the secant's
+    // miss as the chain's correction, and the step after it converges with the subspace step
+    // along it alone (no CG iteration; with the rest start's own zero correction instead: 2).
+    ReducedNewtonSolver loose(problem, ReducedNewtonOptions{});
+    std::vector<RbmResult> series;
+    for (const double degrees : {6.0, 4.0, 2.0, 0.0, -2.0}) {
+        series.push_back(loose.solve(bodyInBox(grid, n, degrees).prescribed, series.empty() ? nullptr : &series.back()));
+        ASSERT_TRUE(series.back().converged) << degrees << " deg: " << series.back().reason;
+    }
+    EXPECT_EQ(series[3].iterations, 0);
+    EXPECT_EQ(largestDifference(series[3].displacement, rest), 0.0);
+    EXPECT_EQ(series[4].linearIterations, 0);
+    const RbmResult exact = ReducedNewtonSolver(problem, roundOffOptions()).solve(bodyInBox(grid, n, -2.0).prescribed);
+    EXPECT_LT(largestDifference(series[4].displacement, exact.displacement), 10.0 * ReducedNewtonOptions{}.displacementTolerance / n);
+}
+
 TEST(ReducedNewton, AfterARestartTheSecondStepTakesASubspaceStepAlongTheFirstStepsCorrection)
 {
     // A restart: a new solver warm-started from another's result at 10° (no history: outside a

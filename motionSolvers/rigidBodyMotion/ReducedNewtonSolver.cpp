@@ -997,6 +997,7 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
     };
 
     std::vector<double> start(size), correction(size);
+    std::vector<double> predictorStart;  // the predictor's start where the start is another
     std::string failure;
     bool chained = false;  // warm-started from this solver's own last result, with its history
     if (initialGuess) {
@@ -1053,6 +1054,21 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
                 const std::size_t k = static_cast<std::size_t>(a) * dim + q;
                 start[k] = guess[q] + correction[k] + (offset[k] - baseOffset[k]);
             }
+        }
+        // A boundary back at rest to rounding (a pitching motion about its rest position, every
+        // half period): the reference mesh, no displacement, is its exact minimum, and the
+        // start. The predictor's start is kept: the chain's correction is still its miss (the
+        // subspace step of the next steps learns from it).
+        double restSquared = 0.0, lastSquared = 0.0;
+        for (int node = 0; node < n; ++node) {
+            if (problem_.isUnknown(node)) continue;
+            restSquared += normSquared(flat(prescribedDisplacement[node]));
+            lastSquared += normSquared(flat(initialGuess->displacement[node]));
+        }
+        if (failure.empty() && std::isfinite(lastSquared) &&
+            std::sqrt(restSquared) <= roundingChangeShare * std::sqrt(lastSquared)) {
+            predictorStart = start;
+            start = offset;  // the sliding nodes' normal part (zero at rest, to rounding)
         }
     } else {
         // Cold start: the harmonic interpolation of the boundary, c n + P K⁻¹ P b.
@@ -1113,9 +1129,15 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
             }
         }
     }
-    // The start actually taken (after the turned one's choice): the step's Newton correction
-    // is the result minus it (the subspace step of later steps).
-    const std::vector<double> predicted = compactUnknowns(u);
+    // The start actually taken (after the turned one's choice), or the predictor's where the
+    // reference mesh was taken instead: the step's Newton correction is the result minus it
+    // (the subspace step of later steps).
+    std::vector<double> predicted = compactUnknowns(u);
+    if (!predictorStart.empty()) {
+        trial = u;
+        setUnknowns(trial, predictorStart);
+        predicted = compactUnknowns(trial);
+    }
     gradient(u, rotations, g);
     double gradientNorm = euclideanNorm(g);
     const double tolerance = std::max(absoluteTolerance_, options_.relativeTolerance * gradientNorm);
