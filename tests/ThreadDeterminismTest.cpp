@@ -49,6 +49,21 @@ namespace {
 
 constexpr int threadCounts[] = {1, 2, 3};
 
+// Threads OpenMP starts in a region that asks for 4 with a num_threads clause, as CHOLMOD's
+// factorisation does (1 without OpenMP).
+int threadsAskingForFour()
+{
+    int seen = 1;
+#ifdef _OPENMP
+#pragma omp parallel num_threads(4)
+    {
+#pragma omp single
+        seen = omp_get_num_threads();
+    }
+#endif
+    return seen;
+}
+
 // Threads OpenMP actually starts in a parallel region with the current setting.
 int threadsInAParallelRegion()
 {
@@ -386,15 +401,6 @@ TEST(ThreadCount, OneThreadHoldsForRegionsThatAskForMore)
 #else
     const int before = threadCount();
     const int adaptsBefore = omp_get_dynamic();
-    auto threadsAskingForFour = [] {
-        int seen = 0;
-#pragma omp parallel num_threads(4)
-        {
-#pragma omp single
-            seen = omp_get_num_threads();
-        }
-        return seen;
-    };
     setThreadCount(1);
     EXPECT_EQ(threadsInAParallelRegion(), 1);
     EXPECT_EQ(threadsAskingForFour(), 1);
@@ -418,15 +424,6 @@ TEST(ThreadCount, LibraryTeamsLargerThanTheThreadCountRunOnOneThreadInsideTheGua
     GTEST_SKIP() << "built without OpenMP";
 #else
     const int before = threadCount();
-    auto threadsAskingForFour = [] {
-        int seen = 0;
-#pragma omp parallel num_threads(4)
-        {
-#pragma omp single
-            seen = omp_get_num_threads();
-        }
-        return seen;
-    };
     for (const int threads : {1, 2, 3}) {
         setThreadCount(threads);
         {
