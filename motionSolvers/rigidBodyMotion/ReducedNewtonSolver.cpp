@@ -484,7 +484,7 @@ double ReducedNewtonSolver::largestRelativeDisplacement(std::span<const double> 
     return largest;
 }
 
-bool ReducedNewtonSolver::newtonDirection(std::span<const double> g, double forcing, double displacementTarget,
+bool ReducedNewtonSolver::newtonDirection(std::span<const double> g, double forcing,
                                           const std::vector<double>* firstPreconditioned, std::span<double> step,
                                           int& iterations, bool& negativeCurvature)
 {
@@ -504,8 +504,8 @@ bool ReducedNewtonSolver::newtonDirection(std::span<const double> g, double forc
     else if (!precondition(r, z)) return false;
     p = z;
     // The step is good enough once K⁻¹ of its residual, the gradient it leaves to first order,
-    // is below the displacement target (the caller's share of the tolerance): the next Newton
-    // iteration then stops.
+    // is half the displacement tolerance: the next Newton iteration then stops.
+    const double displacementTarget = 0.5 * options_.displacementTolerance;
     double rz = dotProduct(r, z);
     negativeCurvature = false;
     for (int iteration = 0; iteration < options_.maximumLinearIterations; ++iteration) {
@@ -1231,7 +1231,6 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
         // convergence), small against every node's shortest edge. It is CG's first
         // preconditioned residual too, so the test costs nothing when it fails.
         const std::vector<double>* firstPreconditioned = nullptr;
-        double displacementTarget = 0.0;  // none without a displacement tolerance
         if (options_.displacementTolerance > 0.0) {
             for (std::size_t k = 0; k < size; ++k) negativeGradient[k] = -g[k];
             if (!precondition(negativeGradient, estimatedCorrection)) {
@@ -1260,20 +1259,11 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
             // 69 CG iterations). CloseToTheMinimumOneNewtonStepPassesTheDisplacementTest.
             if (estimatedDisplacement * estimatedDisplacement <= 10.0 * options_.displacementTolerance)
                 forcing = std::min(forcing, finalForcingFactor_ * std::max(tolerance, roundingLevel) / gradientNorm);
-            // CG's target leaves room for that nonlinearity: half the tolerance, or 0.8 of it
-            // where D² ≤ 0.1 ε keeps the nonlinearity below 0.1 ε (its factor was measured at
-            // 0.2 on the airfoil and 0.8 on the twisted cube). On the airfoil series 58 → 53 CG
-            // iterations, the same Newton steps.
-            displacementTarget = (estimatedDisplacement * estimatedDisplacement <= 0.1 * options_.displacementTolerance
-                                      ? 0.8
-                                      : 0.5) *
-                                 options_.displacementTolerance;
         }
         prepareHessian(u, rotations);
         const int linearIterationsBefore = result.linearIterations;
         bool negativeCurvature = false;
-        if (!newtonDirection(g, forcing, displacementTarget, firstPreconditioned, step, result.linearIterations,
-                             negativeCurvature)) {
+        if (!newtonDirection(g, forcing, firstPreconditioned, step, result.linearIterations, negativeCurvature)) {
             reason = "DIVERGED_LINEAR_SOLVE (Laplacian)";
             break;
         }

@@ -140,13 +140,10 @@ private:
     void applyHessian(std::span<const double> v, std::span<double> y);
     // z = P K⁻¹ P r (compact vectors); returns false if an iterative Laplacian solve failed.
     bool precondition(std::span<const double> r, std::span<double> z);
-    // Projected conjugate gradients on S s = −g to ‖S s + g‖ ≤ forcing ‖g‖, or until K⁻¹ of the
-    // residual moves no node by more than displacementTarget of its shortest edge (0: no such
-    // stop); see the file comment. firstPreconditioned: K⁻¹(−g) when the caller has it (else
-    // computed here).
-    bool newtonDirection(std::span<const double> g, double forcing, double displacementTarget,
-                         const std::vector<double>* firstPreconditioned, std::span<double> step, int& iterations,
-                         bool& negativeCurvature);
+    // Projected conjugate gradients on S s = −g to ‖S s + g‖ ≤ forcing ‖g‖; see the file comment.
+    // firstPreconditioned: K⁻¹(−g) when the caller has it (else computed here).
+    bool newtonDirection(std::span<const double> g, double forcing, const std::vector<double>* firstPreconditioned,
+                         std::span<double> step, int& iterations, bool& negativeCurvature);
     // Start for one rigid body in a fixed frame: see solve(). From the reference positions
     // (cold) or from base's displacements (a warm start without history: the body's motion
     // since base turned in). False where it does not apply.
