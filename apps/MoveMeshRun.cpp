@@ -802,6 +802,8 @@ int MoveMeshRun::run()
                  << " inverted cells\n";
         }
         if (options_.writeVtk) writeVtk(startTime_, startTimeName_, points);
+        // Not held through the solves (QualityEvaluator::releaseWorkspaces).
+        assessor_->releaseWorkspaces();
     }
     out_.flush();
 
@@ -874,6 +876,7 @@ int MoveMeshRun::run()
             }
 
             if (observer_) observer_(StepObservation{record, *solver_, points, valid});
+            assessor_->releaseWorkspaces();
 
             if (!valid) {
                 ++e.invalidSteps;

@@ -65,6 +65,8 @@ public:
     const PseudoTwoDMesh* twoDMesh() const { return evaluator_.twoDMesh(); }
     // The log line's worst quality of the report evaluate() returned last.
     double worstCellQuality(const QualityReport& report) const;
+    // Between time steps: the evaluator's work arrays given back (QualityEvaluator::releaseWorkspaces).
+    void releaseWorkspaces() { evaluator_.releaseWorkspaces(); }
 
     // Checks one solve: `displacement` and `points` are the solver's pointDisplacement() and
     // curPoints(). Fills the solve's and the quality's figures of `record` (not step, time,

@@ -43,6 +43,19 @@ const MeshGeometry& QualityEvaluator::geometryAt(std::span<const Vector3> points
     return geometry_;
 }
 
+void QualityEvaluator::releaseWorkspaces()
+{
+    geometry_ = MeshGeometry{};
+    geometryStale_ = true;
+    checkMeshWorkspace_ = CheckMeshWorkspace{};
+    thesisWorkspace_ = ThesisQualityWorkspace{};
+    nodePositions_ = std::vector<Vector3>{};
+    extremesWorkspace_ = CheckMeshExtremesWorkspace{};
+    extrusionWorkspace_ = ExtrusionExtremesWorkspace{};
+    cellValues_ = std::vector<double>{};
+    cellInverted_ = std::vector<std::uint8_t>{};
+}
+
 QualityReport QualityEvaluator::evaluate(std::span<const Vector3> points)
 {
     updateMeshGeometry(mesh_, points, geometry_);

@@ -101,6 +101,11 @@ public:
     // The geometry computed by the last evaluate() (or evaluateStep() on its 3D path).
     const MeshGeometry& geometry() const { return geometry_; }
     bool isTwoD() const { return twoD_ != nullptr; }
+    // Gives back the per-face and per-cell work arrays (the geometry among them; the next
+    // geometryAt() computes it again). Between the time steps of a run they would sit beside
+    // the motion solver's own arrays: 230 MB at 10⁶ hexahedra, which set the peak of the
+    // twisted cube's run.
+    void releaseWorkspaces();
 
 private:
     const PolyMesh& mesh_;

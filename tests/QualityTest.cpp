@@ -607,6 +607,31 @@ TEST(StepQuality, ThreeDimensionalWorstIsTheSmallestPyramidOverTheMeanOne)
     EXPECT_EQ(inverted.maxSkewness, full.checkMesh.maxSkewness);
 }
 
+TEST(StepQuality, ReleasedWorkspacesGiveTheSameFiguresAndGeometryAgain)
+{
+    // rbmMoveMesh gives the evaluator's arrays back between time steps (the peak of a large
+    // run): the next evaluateStep and geometryAt compute them again, to the last bit.
+    const PolyMesh box = rbm::makeHexBox(3, 2, 2, {0, 0, 0}, {3, 2, 2});
+    auto moved = box.points;
+    for (std::size_t p = 0; p < moved.size(); ++p) moved[p].y += 0.1 * moved[p].x * moved[p].z;
+    rbm::QualityEvaluator evaluator(box);
+    const rbm::StepQuality before = evaluator.evaluateStep(moved);
+    const rbm::MeshGeometry geometry = evaluator.geometryAt(moved);
+    ASSERT_EQ(geometry.cellVolumes.size(), 12u);
+    evaluator.releaseWorkspaces();
+    EXPECT_TRUE(evaluator.geometry().faceCentres.empty());
+    const rbm::MeshGeometry& again = evaluator.geometryAt(moved);  // computed again, nothing evaluated in between
+    EXPECT_EQ(again.faceCentres, geometry.faceCentres);
+    EXPECT_EQ(again.cellVolumes, geometry.cellVolumes);
+    evaluator.releaseWorkspaces();
+    const rbm::StepQuality after = evaluator.evaluateStep(moved);
+    EXPECT_EQ(after.worstCellQuality, before.worstCellQuality);
+    EXPECT_EQ(after.maxNonOrthogonality, before.maxNonOrthogonality);
+    EXPECT_EQ(after.maxSkewness, before.maxSkewness);
+    EXPECT_EQ(after.invertedCellCount, before.invertedCellCount);
+    EXPECT_GT(after.maxNonOrthogonality, 1.0);
+}
+
 TEST(StepQuality, PolygonSignedAreaIsPolygonCentroidsToTheLastBit)
 {
     // Far from the origin, where the fan about the first node matters.

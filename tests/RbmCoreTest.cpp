@@ -1556,6 +1556,92 @@ TEST(RbmProblemInput, EdgeWeightFactorsScaleTheWeightsAndSurviveANewReference)
     EXPECT_THROW(problem.setEdgeWeightFactors(std::vector<double>(3, 1.0)), std::invalid_argument);
 }
 
+TEST(RbmProblemInput, SharedEdgeWeightFactorsAreOneArrayForEveryProblemBuiltFromThem)
+{
+    // The motion solver's stiffening factors are one array of 8 bytes per directed edge (210 MB
+    // at 10⁶ hexahedra): the problems built from it, and their moved copies, share it instead
+    // of copying it, with the weights the copying setter gives to the last bit.
+    TestMesh mesh = structuredGrid(5, 5, 1, 1.0, {0.0, 0.0, 0.0});
+    RbmProblem copying(2, mesh.points, mesh.graph, prescribeBoundary(mesh), EdgeWeighting::inverseDistanceSquared);
+    RbmProblem sharing = copying;
+    const CellNeighbourGraph& graph = copying.graph();
+    std::vector<double> factors(graph.neighbours.size());
+    for (int i = 0; i < copying.nodeCount(); ++i)
+        for (int e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e)
+            factors[e] = 0.5 + mesh.points[i].y * mesh.points[graph.neighbours[e]].y;
+    copying.setEdgeWeightFactors(factors);
+    const auto shared = std::make_shared<const std::vector<double>>(factors);
+    sharing.setEdgeWeightFactors(shared);
+    EXPECT_EQ(sharing.edgeWeightFactors().data(), shared->data());
+    EXPECT_NE(copying.edgeWeightFactors().data(), factors.data());
+    EXPECT_EQ(sharing.edgeWeights(), copying.edgeWeights());
+    std::vector<Vector3> stretched = mesh.points;
+    for (Vector3& point : stretched) point.x *= 3.0;
+    const RbmProblem moved = sharing.withReferencePoints(stretched);
+    EXPECT_EQ(moved.edgeWeightFactors().data(), shared->data());
+    EXPECT_EQ(shared.use_count(), 3);  // this test, sharing, moved
+    EXPECT_EQ(moved.edgeWeights(), copying.withReferencePoints(stretched).edgeWeights());
+    // A factor that is not positive is refused as from the copying setter; null restores the plain weights.
+    auto negative = std::make_shared<std::vector<double>>(factors);
+    (*negative)[3] = -1.0;
+    EXPECT_THROW(sharing.setEdgeWeightFactors(std::shared_ptr<const std::vector<double>>(negative)), std::invalid_argument);
+    sharing.setEdgeWeightFactors(std::shared_ptr<const std::vector<double>>());
+    EXPECT_TRUE(sharing.edgeWeightFactors().empty());
+    const RbmProblem plain(2, mesh.points, mesh.graph, prescribeBoundary(mesh), EdgeWeighting::inverseDistanceSquared);
+    EXPECT_EQ(sharing.edgeWeights(), plain.edgeWeights());
+}
+
+TEST(RbmProblemInput, EdgeTransposeBlockIsThePositionOfTheReverseBlock)
+{
+    // Built at its first use (only the assembled Hessians need it): for every edge i → j
+    // between unknowns, the position of block (j, i) in row index(j); −1 where either end is
+    // prescribed. Copies of the problem give the same array.
+    const TestMesh mesh = structuredGrid(6, 4, 1, 1.0, {0.0, 0.0, 0.0});
+    const RbmProblem problem(2, mesh.points, mesh.graph, prescribeBoundary(mesh), EdgeWeighting::inverseDistanceSquared);
+    const CellNeighbourGraph& graph = problem.graph();
+    const BlockPattern& pattern = problem.blockPattern();
+    const std::vector<int>& transpose = problem.edgeTransposeBlock();
+    ASSERT_EQ(transpose.size(), graph.neighbours.size());
+    int checked = 0;
+    for (int i = 0; i < problem.nodeCount(); ++i)
+        for (int e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e) {
+            const int j = graph.neighbours[e];
+            const int a = problem.unknownIndex()[i], b = problem.unknownIndex()[j];
+            if (a < 0 || b < 0) {
+                EXPECT_EQ(transpose[e], -1);
+                continue;
+            }
+            ASSERT_GE(transpose[e], pattern.rowOffsets[b]);
+            ASSERT_LT(transpose[e], pattern.rowOffsets[b + 1]);
+            EXPECT_EQ(pattern.columns[transpose[e]], a);
+            EXPECT_EQ(pattern.columns[problem.edgeBlock()[e]], b);
+            ++checked;
+        }
+    EXPECT_GT(checked, 20);
+    const RbmProblem copy = problem;
+    EXPECT_EQ(copy.edgeTransposeBlock(), transpose);
+    // The symmetry is still checked when the problem is built: a graph whose node 8 lists
+    // node 9 without the reverse is refused (both unknown, inside the boundary).
+    TestMesh lopsided = mesh;
+    const int from = 8, to = 9;
+    ASSERT_GE(problem.unknownIndex()[from], 0);
+    ASSERT_GE(problem.unknownIndex()[to], 0);
+    std::vector<int>& neighbours = lopsided.graph.neighbours;
+    const auto reverse = std::find(neighbours.begin() + lopsided.graph.offsets[to],
+                                   neighbours.begin() + lopsided.graph.offsets[to + 1], from);
+    ASSERT_NE(reverse, neighbours.begin() + lopsided.graph.offsets[to + 1]);
+    neighbours.erase(reverse);
+    for (std::size_t k = to + 1; k < lopsided.graph.offsets.size(); ++k) --lopsided.graph.offsets[k];
+    try {
+        const RbmProblem refused(2, lopsided.points, lopsided.graph, prescribeBoundary(mesh),
+                                 EdgeWeighting::inverseDistanceSquared);
+        ADD_FAILURE() << "a graph that is not symmetric was accepted";
+    } catch (const std::invalid_argument& error) {
+        EXPECT_NE(std::string(error.what()).find("not symmetric (node 8 lists 9 but not the reverse)"), std::string::npos)
+            << error.what();
+    }
+}
+
 TEST(RbmProblemInput, AProblemWithoutUnknownsReturnsThePrescribedMotion)
 {
     const TestMesh mesh = structuredGrid(3, 3, 1, 1.0, {0.0, 0.0, 0.0});

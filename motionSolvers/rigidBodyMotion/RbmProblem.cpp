@@ -45,14 +45,31 @@ RbmProblem::RbmProblem(int dimension, std::vector<Vector3> referencePoints, Cell
 RbmProblem RbmProblem::withReferencePoints(std::vector<Vector3> referencePoints) const
 {
     RbmProblem moved(dimension_, std::move(referencePoints), graph_, constraints_, weighting_);
-    if (!edgeWeightFactors_.empty()) moved.setEdgeWeightFactors(edgeWeightFactors_);
+    if (edgeWeightFactors_) {
+        moved.edgeWeightFactors_ = edgeWeightFactors_;  // checked already
+        moved.computeEdgeWeights();
+    }
     return moved;
 }
 
 void RbmProblem::setEdgeWeightFactors(std::span<const double> factors)
 {
+    setEdgeWeightFactors(factors.empty() ? nullptr
+                                         : std::make_shared<const std::vector<double>>(factors.begin(), factors.end()));
+}
+
+const std::vector<double>& RbmProblem::edgeWeightFactors() const
+{
+    static const std::vector<double> none;
+    return edgeWeightFactors_ ? *edgeWeightFactors_ : none;
+}
+
+void RbmProblem::setEdgeWeightFactors(std::shared_ptr<const std::vector<double>> shared)
+{
     const CellNeighbourGraph& g = *graph_;
-    if (!factors.empty()) {
+    if (shared && shared->empty()) shared.reset();
+    if (shared) {
+        const std::vector<double>& factors = *shared;
         if (factors.size() != g.neighbours.size())
             throw std::invalid_argument("RBM problem: " + std::to_string(factors.size()) +
                                         " edge weight factors given, expected one per graph edge (" +
@@ -76,7 +93,7 @@ void RbmProblem::setEdgeWeightFactors(std::span<const double> factors)
             }
         }
     }
-    edgeWeightFactors_.assign(factors.begin(), factors.end());
+    edgeWeightFactors_ = std::move(shared);
     computeEdgeWeights();
 }
 
@@ -102,9 +119,11 @@ void RbmProblem::build()
                                     " node constraints given, expected one per node (" + std::to_string(n) + ")");
 
     // Sliding normals.
-    unitNormals_.assign(n, Vector3{});
-    secondUnitNormals_.assign(n, Vector3{});
     slidingNodeCount_ = 0;
+    const bool anySliding = std::any_of(constraints_.begin(), constraints_.end(),
+                                        [](const NodeConstraint& c) { return c.kind == NodeKind::sliding; });
+    unitNormals_.assign(anySliding ? n : 0, Vector3{});
+    secondUnitNormals_.assign(anySliding ? n : 0, Vector3{});
     for (int node = 0; node < n; ++node) {
         if (constraints_[node].kind != NodeKind::sliding) continue;
         Vector3 normal = constraints_[node].normal;
@@ -187,7 +206,6 @@ void RbmProblem::build()
     }
     blockPattern_.columns.assign(blockPattern_.rowOffsets[m], -1);
     edgeBlock_.assign(g.neighbours.size(), -1);
-    edgeTransposeBlock_.assign(g.neighbours.size(), -1);
     for (int a = 0; a < m; ++a) {
         const int i = unknownNodes_[a];
         int position = blockPattern_.rowOffsets[a];
@@ -217,22 +235,45 @@ void RbmProblem::build()
         if (!std::is_sorted(begin, end))
             throw std::invalid_argument("RBM problem: the neighbour lists of the graph are not sorted ascending");
     }
-    // Transposed positions: block (j, i) for edge (i → j) is found in row b = index(j).
-    for (int a = 0; a < m; ++a) {
+    // The graph's symmetry: block (j, i) of every edge (i → j) between unknowns exists (its
+    // position is edgeTransposeBlock()'s, kept only where asked for).
+    forEachEdgeBetweenUnknowns([&](int, int a, int b) {
+        if (reversePosition(a, b) < 0)
+            throw std::invalid_argument("RBM problem: the cell-neighbour graph is not symmetric (node " +
+                                        std::to_string(unknownNodes_[a]) + " lists " +
+                                        std::to_string(unknownNodes_[b]) + " but not the reverse)");
+    });
+}
+
+int RbmProblem::reversePosition(int a, int b) const
+{
+    const auto begin = blockPattern_.columns.begin() + blockPattern_.rowOffsets[b];
+    const auto end = blockPattern_.columns.begin() + blockPattern_.rowOffsets[b + 1];
+    const auto found = std::lower_bound(begin, end, a);
+    return found == end || *found != a ? -1 : static_cast<int>(found - blockPattern_.columns.begin());
+}
+
+template <typename Visit>
+void RbmProblem::forEachEdgeBetweenUnknowns(Visit&& visit) const
+{
+    const CellNeighbourGraph& g = *graph_;
+    for (int a = 0; a < unknownNodeCount(); ++a) {
         const int i = unknownNodes_[a];
         for (int e = g.offsets[i]; e < g.offsets[i + 1]; ++e) {
             const int b = unknownIndex_[g.neighbours[e]];
-            if (b < 0) continue;
-            const auto begin = blockPattern_.columns.begin() + blockPattern_.rowOffsets[b];
-            const auto end = blockPattern_.columns.begin() + blockPattern_.rowOffsets[b + 1];
-            const auto found = std::lower_bound(begin, end, a);
-            if (found == end || *found != a)
-                throw std::invalid_argument("RBM problem: the cell-neighbour graph is not symmetric (node " +
-                                            std::to_string(i) + " lists " + std::to_string(g.neighbours[e]) +
-                                            " but not the reverse)");
-            edgeTransposeBlock_[e] = static_cast<int>(found - blockPattern_.columns.begin());
+            if (b >= 0) visit(e, a, b);
         }
     }
+}
+
+const std::vector<int>& RbmProblem::edgeTransposeBlock() const
+{
+    std::call_once(edgeTransposeBlock_->built, [this] {
+        std::vector<int>& positions = edgeTransposeBlock_->positions;
+        positions.assign(graph_->neighbours.size(), -1);
+        forEachEdgeBetweenUnknowns([&](int e, int a, int b) { positions[e] = reversePosition(a, b); });
+    });
+    return edgeTransposeBlock_->positions;
 }
 
 void RbmProblem::computeEdgeWeights()
@@ -257,7 +298,7 @@ void RbmProblem::computeEdgeWeights()
             case EdgeWeighting::inverseDistance: edgeWeights_[e] = 1.0 / length; break;
             case EdgeWeighting::inverseDistanceSquared: edgeWeights_[e] = 1.0 / (length * length); break;
             }
-            if (!edgeWeightFactors_.empty()) edgeWeights_[e] *= edgeWeightFactors_[e];
+            if (edgeWeightFactors_) edgeWeights_[e] *= (*edgeWeightFactors_)[e];
         }
     }
     if (g.neighbours.empty()) minimumEdgeLength_ = 0.0;

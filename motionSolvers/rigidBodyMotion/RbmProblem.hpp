@@ -31,6 +31,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <span>
 #include <string>
 #include <string_view>
@@ -119,19 +120,26 @@ public:
     // their matrices from the weights. Throws std::invalid_argument for a wrong size, a
     // factor that is not positive and finite, or f_ij ≠ f_ji.
     void setEdgeWeightFactors(std::span<const double> factors);
-    const std::vector<double>& edgeWeightFactors() const { return edgeWeightFactors_; }
+    // The same, sharing the caller's array instead of copying it (null: the plain weights):
+    // one array per directed edge is 210 MB at 10⁶ hexahedra, and the motion solver, every
+    // problem it rebuilds and every sub-step's problem hold the same factors.
+    void setEdgeWeightFactors(std::shared_ptr<const std::vector<double>> factors);
+    const std::vector<double>& edgeWeightFactors() const;
     // Unit normal of a sliding node (zero vector for other nodes), in the problem's dimension.
-    const Vector3& slidingNormal(int node) const { return unitNormals_[node]; }
+    const Vector3& slidingNormal(int node) const { return unitNormals_.empty() ? noNormal : unitNormals_[node]; }
     // Unit second normal m̂ of a line node, orthogonal to slidingNormal(node); zero for every
     // other node.
-    const Vector3& secondSlidingNormal(int node) const { return secondUnitNormals_[node]; }
-    bool slidesOnLine(int node) const { return !(secondUnitNormals_[node] == Vector3{}); }
+    const Vector3& secondSlidingNormal(int node) const
+    {
+        return secondUnitNormals_.empty() ? noNormal : secondUnitNormals_[node];
+    }
+    bool slidesOnLine(int node) const { return !(secondSlidingNormal(node) == Vector3{}); }
     // The part of v that a sliding node may not change: (v·n) n (+ (v·m̂) m̂ on a line), zero
     // for other nodes; v minus it is the admissible (tangential) part.
     Vector3 slidingNormalPart(int node, const Vector3& v) const
     {
-        const Vector3& n = unitNormals_[node];
-        const Vector3& m = secondUnitNormals_[node];
+        const Vector3& n = slidingNormal(node);
+        const Vector3& m = secondSlidingNormal(node);
         return dot(v, n) * n + dot(v, m) * m;
     }
     // True for a sliding node on a mirror plane in 3D (not on a line): its rotation vector
@@ -150,7 +158,9 @@ public:
     // both unknown, the positions of blocks (i, j) and (j, i) in it (−1 otherwise).
     const BlockPattern& blockPattern() const { return blockPattern_; }
     const std::vector<int>& edgeBlock() const { return edgeBlock_; }
-    const std::vector<int>& edgeTransposeBlock() const { return edgeTransposeBlock_; }
+    // Built at the first call (thread-safe): only the assembled Hessians (Newton, linearized)
+    // use it, and one int per directed edge is 105 MB at 10⁶ hexahedra.
+    const std::vector<int>& edgeTransposeBlock() const;
 
     // Shortest and mean reference edge length (mesh size for tolerances).
     double minimumEdgeLength() const { return minimumEdgeLength_; }
@@ -188,6 +198,11 @@ public:
 private:
     void build();
     void computeEdgeWeights();
+    // The position of block (b, a) in row b of the pattern, −1 if there is none.
+    int reversePosition(int a, int b) const;
+    // visit(e, a, b) for every graph edge e = (i → j) with i and j unknown (a, b their indices).
+    template <typename Visit>
+    void forEachEdgeBetweenUnknowns(Visit&& visit) const;
 
     int dimension_;
     std::vector<Vector3> referencePoints_;
@@ -196,14 +211,22 @@ private:
     EdgeWeighting weighting_;
 
     std::vector<double> edgeWeights_;
-    std::vector<double> edgeWeightFactors_;
+    std::shared_ptr<const std::vector<double>> edgeWeightFactors_;  // null: none
+    // Per node; empty without sliding nodes (two arrays of 25 MB at 10⁶ points for zeros).
     std::vector<Vector3> unitNormals_;
     std::vector<Vector3> secondUnitNormals_;
+    static constexpr Vector3 noNormal{};
     std::vector<int> unknownIndex_;
     std::vector<int> unknownNodes_;
     BlockPattern blockPattern_;
     std::vector<int> edgeBlock_;
-    std::vector<int> edgeTransposeBlock_;
+    // The transposed positions and the flag of their one build, shared by copies of the problem
+    // (which have the same pattern).
+    struct TransposeBlocks {
+        std::once_flag built;
+        std::vector<int> positions;
+    };
+    std::shared_ptr<TransposeBlocks> edgeTransposeBlock_ = std::make_shared<TransposeBlocks>();
     double minimumEdgeLength_ = 0.0;
     double meanEdgeLength_ = 0.0;
     int slidingNodeCount_ = 0;

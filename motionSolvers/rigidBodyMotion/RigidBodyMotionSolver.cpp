@@ -268,12 +268,14 @@ struct RigidBodyMotionSolver::Impl {
     std::unique_ptr<PseudoTwoDMesh> twoD;
     std::shared_ptr<const CellNeighbourGraph> graph;
     std::vector<Vector3> referencePoints;  // per node (2D: frame coordinates of the front plane)
-    std::vector<double> edgeFactors;       // stiffening, per graph edge; empty: none
+    // Stiffening, per graph edge; null: none. Shared with the problems built from it (one
+    // array of 210 MB at 10⁶ hexahedra instead of three).
+    std::shared_ptr<const std::vector<double>> edgeFactors;
     std::vector<Label> stiffenedPatches;   // the patches of the stiffening distance
-    std::vector<double> automaticFactors;  // `stiffening auto`: the factors, applied while the motion is rigid
+    std::shared_ptr<const std::vector<double>> automaticFactors;  // `stiffening auto`: the factors, applied while the motion is rigid
 
-    // Node classes of the current problem.
-    std::vector<NodeConstraint> constraints;
+    // Node classes of the current problem (their constraints are the problem's own: not kept
+    // twice, 66 MB at 10⁶ hexahedra).
     std::vector<int> prescribingPatch;     // per node: patch that prescribes it, heldNode, or -1
     std::vector<int> groupOffsets{0};      // prescribed nodes grouped by prescribing patch (CSR)
     std::vector<int> groupNodes;
@@ -311,7 +313,10 @@ struct RigidBodyMotionSolver::Impl {
     void updateProblem();
     std::vector<Vector3> prescribedTarget() const;
     std::unique_ptr<RbmSolver> makeSolver(const RbmProblem& forProblem) const;
-    std::unique_ptr<RbmProblem> problemAround(std::vector<Vector3> points) const;
+    // A problem on `points` with the node classes `nodeConstraints` (by default the current
+    // problem's), the weighting and the stiffening.
+    std::unique_ptr<RbmProblem> problemAround(std::vector<Vector3> points,
+                                              std::vector<NodeConstraint> nodeConstraints = {}) const;
 
     // invertedCells (optional) receives the labels of the inverted cells (2D: planar cells).
     Label countInverted(std::span<const Vector3> nodeDisplacement, double* worstQuality = nullptr,
@@ -380,18 +385,19 @@ void RigidBodyMotionSolver::Impl::buildStiffening()
     } else {
         surface = patchSurface(mesh, owner.points0(), patches);
     }
-    edgeFactors = motion::stiffeningFactors(*graph, referencePoints, dimension, surface, stiffening.exponent);
+    edgeFactors = std::make_shared<const std::vector<double>>(
+        motion::stiffeningFactors(*graph, referencePoints, dimension, surface, stiffening.exponent));
     stiffenedPatches = std::move(patches);
     if (stiffening.automaticPatches) automaticFactors = edgeFactors;
 }
 
 void RigidBodyMotionSolver::Impl::chooseAutomaticStiffening(std::span<const Vector3> target)
 {
-    if (automaticFactors.empty() || allZero(target)) return;
+    if (!automaticFactors || allZero(target)) return;
     const std::vector<Vector3> zero(target.size());
     const bool rigid = BoundaryPath(dimension, referencePoints, groupOffsets, groupNodes, zero, target).allRigid();
-    if (rigid == !edgeFactors.empty()) return;
-    edgeFactors = rigid ? automaticFactors : std::vector<double>{};
+    if (rigid == (edgeFactors != nullptr)) return;
+    edgeFactors = rigid ? automaticFactors : nullptr;
     baseSolver.reset();
     problem = problemAround(referencePoints);
 }
@@ -456,7 +462,8 @@ void RigidBodyMotionSolver::Impl::updateProblem()
         }
     }
 
-    bool changed = !problem || classes.size() != constraints.size();
+    bool changed = !problem;
+    const std::vector<NodeConstraint>& constraints = problem ? problem->constraints() : classes;
     for (int node = 0; !changed && node < n; ++node)
         changed = classes[node].kind != constraints[node].kind || !(classes[node].normal == constraints[node].normal) ||
                   !(classes[node].secondNormal == constraints[node].secondNormal) ||
@@ -464,7 +471,6 @@ void RigidBodyMotionSolver::Impl::updateProblem()
                   prescriber[node] != prescribingPatch[node];
     if (!changed) return;
 
-    constraints = std::move(classes);
     prescribingPatch = std::move(prescriber);
     const int patchCount = static_cast<int>(conditions.size());
     groupOffsets.assign(patchCount + 1, 0);
@@ -484,14 +490,17 @@ void RigidBodyMotionSolver::Impl::updateProblem()
 
     baseSolver.reset();
     problem.reset();
-    problem = problemAround(referencePoints);
+    problem = problemAround(referencePoints, std::move(classes));
 }
 
-std::unique_ptr<RbmProblem> RigidBodyMotionSolver::Impl::problemAround(std::vector<Vector3> points) const
+std::unique_ptr<RbmProblem> RigidBodyMotionSolver::Impl::problemAround(std::vector<Vector3> points,
+                                                                      std::vector<NodeConstraint> nodeConstraints) const
 {
+    if (nodeConstraints.empty() && problem) nodeConstraints = problem->constraints();
     std::unique_ptr<RbmProblem> result;
     try {
-        result = std::make_unique<RbmProblem>(dimension, std::move(points), graph, constraints, options.weighting);
+        result = std::make_unique<RbmProblem>(dimension, std::move(points), graph, std::move(nodeConstraints),
+                                              options.weighting);
     } catch (const std::invalid_argument& error) {
         throw InputError(options.file, 0,
                          std::string("rigidBodyMotionSolver: the mesh and its boundary conditions do not define an RBM "
@@ -499,7 +508,7 @@ std::unique_ptr<RbmProblem> RigidBodyMotionSolver::Impl::problemAround(std::vect
                              error.what() +
                              " (every group of moving points needs a prescribed patch, e.g. fixedValue, holding it)");
     }
-    if (!edgeFactors.empty()) result->setEdgeWeightFactors(edgeFactors);
+    if (edgeFactors) result->setEdgeWeightFactors(edgeFactors);
     return result;
 }
 
@@ -648,6 +657,15 @@ Label RigidBodyMotionSolver::Impl::countInverted(std::span<const Vector3> nodeDi
             if ((worstQuality || remember) && std::abs(volume) > 0.0)
                 worst = std::min(worst, smallestPyramid[c] * faceCounts[c] / std::abs(volume));
         }
+        // Not kept between checks: the 3D workspace (face centres and areas, cell centres and
+        // volumes, positions) is 215 MB at 10⁶ hexahedra, and the first check, of the initial
+        // mesh, comes before the solve, whose peak it would raise (twist3D at 10⁶ cells,
+        // rbmMoveMesh with the defaults: 3.54 → 3.3 GB). Allocating it again costs a step
+        // about 1 % of its time there.
+        geometry = MeshGeometry{};
+        positions = std::vector<Vector3>{};
+        smallestPyramid = std::vector<double>{};
+        faceCounts = std::vector<int>{};
     }
     worst = std::isfinite(worst) ? worst : 1.0;
     if (worstQuality) *worstQuality = worst;
@@ -882,7 +900,11 @@ int RigidBodyMotionSolver::dimension() const { return impl_->dimension; }
 const PseudoTwoDMesh* RigidBodyMotionSolver::twoDMesh() const { return impl_->twoD.get(); }
 const RbmProblem* RigidBodyMotionSolver::problem() const { return impl_->problem.get(); }
 const RbmState& RigidBodyMotionSolver::state() const { return impl_->state; }
-const std::vector<double>& RigidBodyMotionSolver::stiffeningFactors() const { return impl_->edgeFactors; }
+const std::vector<double>& RigidBodyMotionSolver::stiffeningFactors() const
+{
+    static const std::vector<double> none;
+    return impl_->edgeFactors ? *impl_->edgeFactors : none;
+}
 const std::vector<Label>& RigidBodyMotionSolver::stiffeningPatches() const { return impl_->stiffenedPatches; }
 Label RigidBodyMotionSolver::initialInvertedCellCount() const { return impl_->initialInverted; }
 
