@@ -1643,6 +1643,30 @@ TEST(Stiffening, NearestSurfaceMatchesABruteForceSearch)
     }
 }
 
+TEST(Stiffening, NearestSurfaceOfAClosedBoundaryMatchesABruteForceSearchToTheLastBit)
+{
+    // All six sides of a perturbed box: the hierarchy splits them by the way they face first
+    // (the boxes of position splits would contain the inside). Points inside and around it,
+    // with and without a hint: every distance is the minimum over all primitives, bit for bit.
+    PolyMesh mesh = makeHexBox(5, 4, 3, {0, 0, 0}, {5, 4, 3});
+    std::mt19937 random(17);
+    std::uniform_real_distribution<double> jitter(-0.15, 0.15);
+    for (Vector3& p : mesh.points) p += Vector3{jitter(random), jitter(random), jitter(random)};
+    std::vector<Label> patches;
+    for (const char* name : {"xMin", "xMax", "yMin", "yMax", "zMin", "zMax"}) patches.push_back(mesh.findPatch(name));
+    const NearestSurface surface = patchSurface(mesh, mesh.points, patches);
+    ASSERT_EQ(surface.size(), 4u * 2u * (5 * 4 + 5 * 3 + 4 * 3));
+    std::uniform_real_distribution<double> coordinate(-1.0, 6.0);
+    int hint = -1;
+    for (int k = 0; k < 400; ++k) {
+        const Vector3 p{coordinate(random), coordinate(random) * 0.8, coordinate(random) * 0.6};
+        double best = std::numeric_limits<double>::infinity();
+        for (int q = 0; q < static_cast<int>(surface.size()); ++q) best = std::min(best, surface.squaredDistanceTo(q, p));
+        EXPECT_EQ(surface.distance(p), std::sqrt(best)) << p;
+        EXPECT_EQ(surface.distance(p, hint), std::sqrt(best)) << p;
+    }
+}
+
 TEST(Stiffening, PrimitivesWithinARadiusAreThoseABruteForceSearchFinds)
 {
     const PolyMesh mesh = makeHexBox(4, 3, 3, {0, 0, 0}, {4, 3, 3});

@@ -13,7 +13,9 @@
 // moves more rigidly.
 //
 // Distances come from a bounding-volume hierarchy over the patch faces (triangulated about
-// their centres) or edges: O(log F) per edge, no O(N·F) scan.
+// their centres) or edges: O(log F) per edge, no O(N·F) scan. In 3D its first splits separate
+// the faces by the way they face (NearestSurface::build), so that the boxes near its root are
+// thin sides and not the domain they enclose.
 
 #include "CellNeighbourGraph.hpp"
 #include "PlanarMesh.hpp"
@@ -54,6 +56,7 @@ private:
     struct Primitive {
         Vector3 a, b, c;
         bool segment = false;
+        int facing = 0;  // the axis and sign of its normal's largest component (build's first splits)
     };
     struct Box {
         Vector3 min, max;
