@@ -19,8 +19,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <random>
+#include <string>
 #include <vector>
 
 static ::testing::Environment* const petscEnvironment =
@@ -760,6 +762,41 @@ TEST(ReducedNewton, ABoundaryBackAtRestStartsFromTheReferenceMeshAndTheChainGoes
     EXPECT_EQ(series[4].linearIterations, 0);
     const RbmResult exact = ReducedNewtonSolver(problem, roundOffOptions()).solve(bodyInBox(grid, n, -2.0).prescribed);
     EXPECT_LT(largestDifference(series[4].displacement, exact.displacement), 10.0 * ReducedNewtonOptions{}.displacementTolerance / n);
+}
+
+TEST(ReducedNewton, AtABoundaryMetBeforeTheDisplacementTestComesBeforeTheSubspaceStep)
+{
+    // 2° → 4° → 6° → 4° (default tolerance): at the turning point the secant predictor is the
+    // kept 4° result, which meets the boundary to rounding and is its minimum already. The
+    // displacement test then comes first and ends the solve: no subspace step (with its three S
+    // products) is tried, which -rbm_reduced_monitor shows, and the result is the kept one.
+    const int n = 16;
+    const GridCase grid = gridCase(2, n, false, 29);
+    const RbmProblem problem(2, grid.points, grid.problem->graph(), bodyInBox(grid, n, 2.0).constraints,
+                             EdgeWeighting::inverseDistanceSquared);
+    ReducedNewtonSolver solver(problem, ReducedNewtonOptions{});
+    std::vector<RbmResult> series;
+    std::string printed;
+    for (const double degrees : {2.0, 4.0, 6.0, 4.0}) {
+        const bool last = series.size() == 3;
+        if (last) {
+            ASSERT_EQ(PetscOptionsSetValue(nullptr, "-rbm_reduced_monitor", nullptr), 0);
+            ::testing::internal::CaptureStdout();
+        }
+        series.push_back(solver.solve(bodyInBox(grid, n, degrees).prescribed, series.empty() ? nullptr : &series.back()));
+        if (last) {
+            std::fflush(stdout);
+            printed = ::testing::internal::GetCapturedStdout();
+            ASSERT_EQ(PetscOptionsClearValue(nullptr, "-rbm_reduced_monitor"), 0);
+        }
+        ASSERT_TRUE(series.back().converged) << degrees << " deg: " << series.back().reason;
+    }
+    EXPECT_NE(printed.find("displacement test at the reproduced boundary"), std::string::npos) << printed;
+    EXPECT_EQ(printed.find("subspace"), std::string::npos) << printed;
+    EXPECT_EQ(series[3].iterations, 0);
+    EXPECT_EQ(series[3].linearIterations, 0);
+    EXPECT_EQ(series[3].reason, "CONVERGED_DISPLACEMENT");
+    EXPECT_LT(largestDifference(series[3].displacement, series[1].displacement), 1e-12);
 }
 
 TEST(ReducedNewton, AfterARestartTheSecondStepTakesASubspaceStepAlongTheFirstStepsCorrection)

@@ -1000,6 +1000,10 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
     std::vector<double> predictorStart;  // the predictor's start where the start is another
     std::string failure;
     bool chained = false;  // warm-started from this solver's own last result, with its history
+    // The predictor meets the prescribed boundary to rounding (a turning point of the motion
+    // back to a boundary met before, whose kept result it reproduces; a boundary back at rest):
+    // the start is usually the minimum already (see the displacement test before the loop).
+    bool boundaryReproduced = false;
     if (initialGuess) {
         // Warm start. When the guess is this solver's own last result and the one before is
         // known, a secant step along the boundary's path first: G = u_n + α (u_n − u_{n−1}),
@@ -1035,6 +1039,15 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
                 for (int node = 0; node < n; ++node) base[node] += coefficients[j] * (last[node] - older[node]);
             }
         }
+        {
+            double missSquared = 0.0, sizeSquared = 0.0;
+            for (int node = 0; node < n; ++node) {
+                if (problem_.isUnknown(node)) continue;
+                missSquared += normSquared(flat(prescribedDisplacement[node]) - flat(base[node]));
+                sizeSquared += normSquared(flat(prescribedDisplacement[node])) + normSquared(flat(base[node]));
+            }
+            boundaryReproduced = std::isfinite(sizeSquared) && std::sqrt(missSquared) <= roundingChangeShare * std::sqrt(sizeSquared);
+        }
         std::vector<double> baseOffset(size);
         problem_.slidingOffset(base, baseOffset, dim);
         // K⁻¹ of the change is linear in the boundary's change (without sliding nodes): taken
@@ -1069,6 +1082,7 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
             std::sqrt(restSquared) <= roundingChangeShare * std::sqrt(lastSquared)) {
             predictorStart = start;
             start = offset;  // the sliding nodes' normal part (zero at rest, to rounding)
+            boundaryReproduced = true;
         }
     } else {
         // Cold start: the harmonic interpolation of the boundary, c n + P K⁻¹ P b.
@@ -1178,7 +1192,29 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
     // whose first kept no history), in that of the last solve's (the miss of its turned start).
     const bool correctionsFit = chained == correctionsFromChain_;
     bool subspaceTried = !initialGuess || recentCorrections_.empty() || !correctionsFit;
-    for (int iteration = 0; failure.empty(); ++iteration) {
+    // Where the boundary is reproduced, the displacement test first: the subspace step's products
+    // (three S products, the Hessian's data, a fit and a gradient) would end "not taken" there.
+    // On the benchmark's pitching airfoil (steps 6, 7, 16, 17 and those at rest) that saved
+    // about 11 ms a step, on the twisted 10⁵-cell cube's oscillation about 90 ms; where the test
+    // fails, its K⁻¹ is one back-substitution (or V-cycle) more before the usual order.
+    bool convergedAtStart = false;
+    if (boundaryReproduced && !subspaceTried && options_.displacementTolerance > 0.0 && failure.empty() &&
+        std::isfinite(energy) && std::isfinite(gradientNorm) && gradientNorm > tolerance) {
+        for (std::size_t k = 0; k < size; ++k) negativeGradient[k] = -g[k];
+        if (precondition(negativeGradient, estimatedCorrection)) {
+            const double estimatedDisplacement = largestRelativeDisplacement(estimatedCorrection);
+            if (monitor)
+                std::printf("  displacement test at the reproduced boundary: K^-1(-grad) moves a node by %.3g of its "
+                            "shortest edge (tolerance %.3g)\n",
+                            estimatedDisplacement, options_.displacementTolerance);
+            if (estimatedDisplacement <= options_.displacementTolerance) {
+                result.converged = true;
+                reason = "CONVERGED_DISPLACEMENT";
+                convergedAtStart = true;
+            }
+        }
+    }
+    for (int iteration = 0; failure.empty() && !convergedAtStart; ++iteration) {
         if (!std::isfinite(energy) || !std::isfinite(gradientNorm)) {
             reason = "DIVERGED_FNORM_NAN";
             break;
