@@ -1046,7 +1046,8 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
                 missSquared += normSquared(flat(prescribedDisplacement[node]) - flat(base[node]));
                 sizeSquared += normSquared(flat(prescribedDisplacement[node])) + normSquared(flat(base[node]));
             }
-            boundaryReproduced = std::isfinite(sizeSquared) && std::sqrt(missSquared) <= roundingChangeShare * std::sqrt(sizeSquared);
+            boundaryReproduced =
+                std::isfinite(sizeSquared) && std::sqrt(missSquared) <= roundingChangeShare * std::sqrt(sizeSquared);
         }
         std::vector<double> baseOffset(size);
         problem_.slidingOffset(base, baseOffset, dim);

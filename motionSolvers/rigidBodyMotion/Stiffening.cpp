@@ -71,10 +71,6 @@ double squaredBoxDistance(const Vector3& p, const Vector3& min, const Vector3& m
     return sum;
 }
 
-} // namespace
-
-namespace {
-
 // Which way a primitive faces: the axis of its normal's largest component and that
 // component's sign (0–5; a degenerate primitive: 0).
 int facing(const Vector3& normal)
@@ -155,15 +151,16 @@ void NearestSurface::build()
         // only, 5.6 s now (with stiffeningFactors' candidate rule), the same bits.
         // Otherwise: at the median of the centroids along the longest axis of their box.
         const auto first = primitives_.begin() + task.begin, last = primitives_.begin() + task.end;
-        const auto [fewest, most] = std::minmax_element(
-            first, last, [](const Primitive& l, const Primitive& r) { return l.facing < r.facing; });
+        auto byFacing = [](const Primitive& l, const Primitive& r) { return l.facing < r.facing; };
+        const auto [fewest, most] = std::minmax_element(first, last, byFacing);
         int middle = task.begin + (task.end - task.begin) / 2;
         if (fewest->facing != most->facing) {
-            std::stable_sort(first, last, [](const Primitive& l, const Primitive& r) { return l.facing < r.facing; });
+            std::stable_sort(first, last, byFacing);
             int best = -1;
-            for (int k = task.begin + 1; k < task.end; ++k)
-                if (primitives_[k].facing != primitives_[k - 1].facing && (best < 0 || std::abs(k - middle) < std::abs(best - middle)))
-                    best = k;
+            for (int k = task.begin + 1; k < task.end; ++k) {
+                const bool boundary = primitives_[k].facing != primitives_[k - 1].facing;
+                if (boundary && (best < 0 || std::abs(k - middle) < std::abs(best - middle))) best = k;
+            }
             middle = best;
         } else {
             int axis = 0;
