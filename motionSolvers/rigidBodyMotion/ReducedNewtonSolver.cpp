@@ -1039,16 +1039,18 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
                 for (int node = 0; node < n; ++node) base[node] += coefficients[j] * (last[node] - older[node]);
             }
         }
-        {
-            double missSquared = 0.0, sizeSquared = 0.0;
-            for (int node = 0; node < n; ++node) {
-                if (problem_.isUnknown(node)) continue;
-                missSquared += normSquared(flat(prescribedDisplacement[node]) - flat(base[node]));
-                sizeSquared += normSquared(flat(prescribedDisplacement[node])) + normSquared(flat(base[node]));
-            }
-            boundaryReproduced =
-                std::isfinite(sizeSquared) && std::sqrt(missSquared) <= roundingChangeShare * std::sqrt(sizeSquared);
+        // On the prescribed nodes: the predictor's miss, the sizes of the new boundary, the
+        // predictor's and the guess's (the two tests to rounding below).
+        double missSquared = 0.0, restSquared = 0.0, baseSquared = 0.0, lastSquared = 0.0;
+        for (int node = 0; node < n; ++node) {
+            if (problem_.isUnknown(node)) continue;
+            missSquared += normSquared(flat(prescribedDisplacement[node]) - flat(base[node]));
+            restSquared += normSquared(flat(prescribedDisplacement[node]));
+            baseSquared += normSquared(flat(base[node]));
+            lastSquared += normSquared(flat(initialGuess->displacement[node]));
         }
+        boundaryReproduced = std::isfinite(restSquared + baseSquared) &&
+                             std::sqrt(missSquared) <= roundingChangeShare * std::sqrt(restSquared + baseSquared);
         std::vector<double> baseOffset(size);
         problem_.slidingOffset(base, baseOffset, dim);
         // K⁻¹ of the change is linear in the boundary's change (without sliding nodes): taken
@@ -1073,12 +1075,6 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
         // half period): the reference mesh, no displacement, is its exact minimum, and the
         // start. The predictor's start is kept: the chain's correction is still its miss (the
         // subspace step of the next steps learns from it).
-        double restSquared = 0.0, lastSquared = 0.0;
-        for (int node = 0; node < n; ++node) {
-            if (problem_.isUnknown(node)) continue;
-            restSquared += normSquared(flat(prescribedDisplacement[node]));
-            lastSquared += normSquared(flat(initialGuess->displacement[node]));
-        }
         if (failure.empty() && std::isfinite(lastSquared) &&
             std::sqrt(restSquared) <= roundingChangeShare * std::sqrt(lastSquared)) {
             predictorStart = start;
