@@ -42,7 +42,13 @@ std::string formatStepLogLine(const StepLogRecord& record, int timeNameWidth)
 {
     std::string line = "Time = ";
     appendFormatted(line, "%-*s", timeNameWidth, record.timeName.c_str());
-    appendFormatted(line, "  sub-steps %2d  iterations %4d  residual ", record.subSteps, record.iterations);
+    return line + "  " + formatStepFigures(record);
+}
+
+std::string formatStepFigures(const StepLogRecord& record)
+{
+    std::string line;
+    appendFormatted(line, "sub-steps %2d  iterations %4d  residual ", record.subSteps, record.iterations);
     if (std::isfinite(record.residual)) {
         appendFormatted(line, "%8.2e", record.residual);
     } else {

@@ -47,8 +47,13 @@ struct StepLogRecord {
     bool written = false;          // written to its time folder
 };
 
-// The readable line (no trailing newline).
+// The readable line (no trailing newline): "Time = <name>  " and formatStepFigures.
 std::string formatStepLogLine(const StepLogRecord& record, int timeNameWidth = 8);
+
+// The step's figures without the time: "sub-steps  1  iterations    2  residual ... wall ... s"
+// and the verdict words. Inside a host that prints its own "Time = " line (OpenFOAM), rbm's
+// line starts with its solver's name instead, so that log parsers count each step once.
+std::string formatStepFigures(const StepLogRecord& record);
 
 // The JSON object of a step, on one line (no trailing newline).
 std::string stepLogJson(const StepLogRecord& record);

@@ -3,6 +3,7 @@
 #include "IStringStream.H"
 #include "OStringStream.H"
 #include "addToRunTimeSelectionTable.H"
+#include "coupledPolyPatch.H"
 #include "mapPolyMesh.H"
 #include "pointMesh.H"
 
@@ -43,6 +44,17 @@ void appendNormals(std::vector<double>& normals, const Foam::vector& n, Foam::la
         normals.push_back(n.y());
         normals.push_back(n.z());
     }
+}
+
+// A patch whose points are tied to another patch's. OpenFOAM v1912's AMI patches answer
+// coupled() false (they are coupled by interpolation, not face to face) but still derive from
+// coupledPolyPatch; the names catch the interface types of later versions too.
+bool isCoupledOrInterface(const Foam::polyPatch& patch)
+{
+    const std::string type(patch.type());
+    return patch.coupled() || Foam::isA<Foam::coupledPolyPatch>(patch)
+        || type.find("AMI") != std::string::npos || type.rfind("nonConformal", 0) == 0
+        || type.rfind("cyclic", 0) == 0;
 }
 
 // fixedNormalSlip keeps its normal private: read it back from what the field writes.
@@ -91,12 +103,35 @@ Foam::rbmRigidBodyMotionSolver::rbmRigidBodyMotionSolver
 Foam::rbmRigidBodyMotionSolver::~rbmRigidBodyMotionSolver() = default;
 
 
+const Foam::dictionary& Foam::rbmRigidBodyMotionSolver::rbmCoefficients()
+{
+    // OpenFOAM's coeffDict() falls back to the whole dynamicMeshDict when the Coeffs block is
+    // absent; rbm's keyword check would then reject the dynamicFvMesh, motionSolverLibs and the
+    // previous solver's entries (diffusivity, ...) a user leaves there when switching a case
+    // with one line. rbm reads its own block only: absent means every default.
+    if (!coefficients_.valid())
+    {
+        const word blockName(typeName + "Coeffs");
+        if (found(blockName))
+        {
+            coefficients_.reset(new dictionary(subDict(blockName)));
+        }
+        else
+        {
+            coefficients_.reset(new dictionary());
+            coefficients_->name() = name() + '.' + blockName;
+        }
+    }
+    return *coefficients_;
+}
+
+
 void Foam::rbmRigidBodyMotionSolver::construct()
 {
     const polyMesh& pMesh = mesh();
 
     // The coefficients rbm reads: rbmMoveMesh's keywords, without the plugin's own.
-    dictionary coefficients(coeffDict());
+    dictionary coefficients(rbmCoefficients());
     writeInvalid_ = coefficients.lookupOrDefault<bool>(writeInvalidKeyword, false);
     coefficients.remove(writeInvalidKeyword);
     OStringStream text;
@@ -117,11 +152,13 @@ void Foam::rbmRigidBodyMotionSolver::construct()
         const pointPatchField<vector>& field = pointDisplacement_.boundaryField()[patchi];
         rbm::host::HostPatchBoundary& b = boundary[patchi];
         const word& fieldType = field.type();
-        if (patch.coupled())
+        if (isCoupledOrInterface(patch))
         {
             FatalErrorInFunction
-                << "rigidBodyMotionSolver: patch " << patch.name() << " is coupled (" << patch.type()
-                << "); rbm's motion solver does not support coupled patches (cyclic, ...) yet."
+                << "rigidBodyMotionSolver: patch " << patch.name() << " is of type " << patch.type()
+                << ", a coupled or interface patch; rbm's motion solver does not support coupled or"
+                << " interface patches (cyclic, cyclicAMI, cyclicACMI, cyclicPeriodicAMI,"
+                << " nonConformal*): the two sides would move independently and come apart."
                 << exit(FatalError);
         }
         if (patch.type() == "empty" || patch.type() == "wedge")
@@ -166,14 +203,14 @@ void Foam::rbmRigidBodyMotionSolver::construct()
         (
             global.hostMesh(),
             text.str(),
-            coeffDict().name(),
+            rbmCoefficients().name(),
             boundary,
             pMesh.time().path()
         );
     }
     catch (const rbm::host::HostInputError& error)
     {
-        FatalIOErrorInFunction(coeffDict())
+        FatalIOErrorInFunction(rbmCoefficients())
             << error.what() << exit(FatalIOError);
     }
     catch (const std::exception& error)
@@ -234,7 +271,7 @@ void Foam::rbmRigidBodyMotionSolver::solve()
     }
     catch (const rbm::host::HostInputError& error)
     {
-        FatalIOErrorInFunction(coeffDict())
+        FatalIOErrorInFunction(rbmCoefficients())
             << error.what() << exit(FatalIOError);
     }
     catch (const std::exception& error)

@@ -62,6 +62,17 @@ int applyThreadCountPolicy(int mpiRanks)
     return threads;
 }
 
+int applyHostThreadCountPolicy()
+{
+#ifdef _OPENMP
+    const int threads = isSet("OMP_NUM_THREADS") ? std::max(1, omp_get_max_threads()) : 1;
+    setThreadCount(threads);
+    return threads;
+#else
+    return 1;
+#endif
+}
+
 void setThreadCount(int threads)
 {
 #ifdef _OPENMP

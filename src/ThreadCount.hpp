@@ -14,9 +14,13 @@
 // On a machine shared with other jobs, OMP_NUM_THREADS=1 (or OMP_DYNAMIC=true, OpenMP's own
 // load adjustment) avoids threads that wait for a core at every barrier. A default that
 // adapts to the load was tried and dropped: on a dedicated machine a long run counts its own
-// load and falls back to one thread. rbmMoveMesh applies the policy with its MPI rank count;
-// other programs get OpenMP's default (OMP_NUM_THREADS, else every core). Without OpenMP
-// (a compiler without it) everything runs on 1 thread.
+// load and falls back to one thread. rbmMoveMesh applies the policy with its MPI rank count.
+// Inside a host program (the OpenFOAM plugin) rbm follows the host's convention instead: one
+// core per process, unless OMP_NUM_THREADS says otherwise (applyHostThreadCountPolicy): a
+// flow solver's ranks already fill the cores, and threads that wait for a busy core at every
+// barrier made a motion step several times slower. Other programs get OpenMP's default
+// (OMP_NUM_THREADS, else every core). Without OpenMP (a compiler without it) everything runs
+// on 1 thread.
 
 #include <cstddef>
 #include <string>
@@ -43,6 +47,9 @@ int policyThreadCount(int mpiRanks);
 // holds for the libraries' OpenMP regions too, even those with a num_threads clause
 // (CHOLMOD's factorisation asks for 4): OpenMP's max-active-levels is then 0.
 int applyThreadCountPolicy(int mpiRanks);
+
+// Inside a host program (OpenFOAM): OMP_NUM_THREADS when set, otherwise 1. Returns the count.
+int applyHostThreadCountPolicy();
 
 // Exactly this many threads (≥ 1) for the following threaded loops, whatever the load
 // (ignored without OpenMP); 1 holds for the libraries' regions too, as above.

@@ -6,7 +6,14 @@
 # independent front door over the same core: its boundary conditions are rbm's, the plugin's
 # are OpenFOAM's), or OpenFOAM's own behaviour:
 #   serial2D        naca4415 (4° about the trailing edge, pseudo-2D) with moveDynamicMesh: the
-#                   points equal rbmMoveMesh's to 1e-8 chord, the log line's figures too.
+#                   points equal rbmMoveMesh's to 1e-8 chord, the log line's figures too; one
+#                   line of the log starts with "Time = " (rbm's own starts with its name).
+#   oneLineSwitch   naca4415 switched with the two lines only (no rigidBodyMotionSolverCoeffs,
+#                   the previous solver's entries left in dynamicMeshDict): equals rbmMoveMesh
+#                   with the defaults to 1e-8; a misspelt entry in the block is a FATAL IO ERROR
+#                   naming it.
+#   interfacePatches the channel in two blocks joined by cyclicAMI patches: a FatalError naming
+#                   the patch and its type, nothing written.
 #   serial3D        tutorials/cube (3D, 30 linearized sub-steps) with moveDynamicMesh: the points
 #                   equal rbmMoveMesh's to 1e-9 (cells are about 0.1 wide).
 #   flowSteps       tests/data/openfoamPlugin/oscillatingChannel: 5 steps of pimpleFoam (slip
@@ -105,13 +112,41 @@ function(addCoefficient case entry)
   file(WRITE ${case}/constant/dynamicMeshDict "${text}")
 endfunction()
 
-# The log line's figures before the wall time: "Time = 1 sub-steps ... inverted 0".
+# The log line's figures before the wall time, "sub-steps ... inverted 0", of time `time`:
+# rbmMoveMesh prints "Time = 1  sub-steps ... inverted 0"; inside OpenFOAM, which prints its
+# own "Time = 1" line, rbm's line is "rigidBodyMotionSolver: sub-steps ... inverted 0" (a line
+# starting "Time = " would count every step twice in foamLog-style parsers).
 function(stepFigures text time name)
-  string(REGEX MATCH "Time = ${time} +sub-steps[^\n]*inverted [0-9]+" line "${text}")
-  if(NOT line)
+  string(REGEX MATCH "Time = ${time} +(sub-steps[^\n]*inverted [0-9]+)" line "${text}")
+  if(line)
+    set(${name} "${CMAKE_MATCH_1}" PARENT_SCOPE)
+    return()
+  endif()
+  string(FIND "${text}" "\nTime = ${time}\n" at)
+  if(at EQUAL -1)
     fail("no log line for time ${time}:\n${text}")
   endif()
-  set(${name} "${line}" PARENT_SCOPE)
+  string(SUBSTRING "${text}" ${at} -1 rest)
+  string(SUBSTRING "${rest}" 1 -1 rest)
+  string(FIND "${rest}" "\nTime = " next)
+  if(NOT next EQUAL -1)
+    string(SUBSTRING "${rest}" 0 ${next} rest)
+  endif()
+  string(REGEX MATCH "\nrigidBodyMotionSolver: (sub-steps[^\n]*inverted [0-9]+)" line "${rest}")
+  if(NOT line)
+    fail("no rigidBodyMotionSolver line for time ${time}:\n${text}")
+  endif()
+  set(${name} "${CMAKE_MATCH_1}" PARENT_SCOPE)
+endfunction()
+
+# OpenFOAM's log has exactly `count` lines starting with "Time = " (one per step: rbm's own
+# line must not add a second).
+function(expectTimeLines text count)
+  string(REGEX MATCHALL "\nTime = [^\n]*" lines "\n${text}")
+  list(LENGTH lines found)
+  if(NOT found EQUAL count)
+    fail("${found} lines start with 'Time = ', expected ${count} (one per step):\n${text}")
+  endif()
 endfunction()
 
 file(MAKE_DIRECTORY ${RBM_WORK_DIR})
@@ -149,6 +184,78 @@ endmacro()
 
 if(MODE STREQUAL "serial2D")
   compareOneStep(naca4415 1e-8 "rigidBodyMotionSolver (rbm): 27150 points, solved in 2D")
+  file(READ ${pluginCase}/log.moveDynamicMesh log)
+  expectTimeLines("${log}" 1)
+
+elseif(MODE STREQUAL "oneLineSwitch")
+  # A user's switch of an OpenFOAM case: the two lines, no rigidBodyMotionSolverCoeffs, and
+  # the previous solver's entries left where they were. rbm reads its own block only (absent:
+  # the defaults), so the run equals rbmMoveMesh's with the defaults.
+  file(REMOVE_RECURSE ${rbmCase})
+  copyCaseInputs(${RBM_SOURCE_DIR}/tutorials/naca4415 ${rbmCase})
+  prepareCase(${RBM_SOURCE_DIR}/tutorials/naca4415 ${pluginCase})
+  file(READ ${pluginCase}/constant/dynamicMeshDict text)
+  string(REGEX REPLACE "rigidBodyMotionSolverCoeffs[ \t\n]*{[^}]*}" "" text "${text}")
+  string(APPEND text "\ndiffusivity  quadratic inverseDistance (airfoil);\n"
+         "displacementLaplacianCoeffs\n{\n    diffusivity quadratic inverseDistance (airfoil);\n}\n"
+         "mass 2.1;\n")
+  file(WRITE ${pluginCase}/constant/dynamicMeshDict "${text}")
+  string(FIND "${text}" "rigidBodyMotionSolverCoeffs" block)
+  if(NOT block EQUAL -1)
+    fail("the case still has a rigidBodyMotionSolverCoeffs block:\n${text}")
+  endif()
+  runIn(${rbmCase} 0 rbmMoveMesh ${RBM_MOVE_MESH} -noVTK)
+  runIn(${pluginCase} 0 moveDynamicMesh moveDynamicMesh)
+  comparePoints(${rbmCase}/1/polyMesh/points.gz ${pluginCase}/1/polyMesh/points.gz 1e-8)
+  # A misspelt entry inside the block is still an error that names it.
+  file(APPEND ${pluginCase}/constant/dynamicMeshDict "rigidBodyMotionSolverCoeffs\n{\n    subStep 3;\n}\n")
+  file(REMOVE_RECURSE ${pluginCase}/1)
+  runIn(${pluginCase} FAIL moveDynamicMesh moveDynamicMesh)
+  expectContains("${moveDynamicMesh_out}" "FOAM FATAL IO ERROR" "moveDynamicMesh's output")
+  expectContains("${moveDynamicMesh_out}" "subStep" "moveDynamicMesh's output")
+
+elseif(MODE STREQUAL "interfacePatches")
+  # The channel in two blocks joined by a cyclicAMI pair: OpenFOAM's own coupled() is false
+  # for AMI patches, yet each side's points would move on their own and the interface would
+  # come apart. The plugin refuses the case by the patch's type, naming it, before any step.
+  set(source ${RBM_SOURCE_DIR}/tests/data/openfoamPlugin/oscillatingChannel)
+  prepareCase(${source} ${pluginCase})
+  file(READ ${pluginCase}/system/blockMeshDict text)
+  string(REGEX REPLACE "vertices.*$" "" text "${text}")
+  string(APPEND text [=[
+vertices
+(
+    (0 0 0) (0.5 0 0) (0.5 1 0) (0 1 0) (0 0 0.1) (0.5 0 0.1) (0.5 1 0.1) (0 1 0.1)
+    (0.5 0 0) (1 0 0) (1 1 0) (0.5 1 0) (0.5 0 0.1) (1 0 0.1) (1 1 0.1) (0.5 1 0.1)
+);
+blocks
+(
+    hex (0 1 2 3 4 5 6 7) (8 16 1) simpleGrading (1 1 1)
+    hex (8 9 10 11 12 13 14 15) (8 13 1) simpleGrading (1 1 1)
+);
+boundary
+(
+    bottom { type wall; faces ((0 1 5 4) (8 9 13 12)); }
+    top    { type patch; faces ((3 7 6 2) (11 15 14 10)); }
+    sides  { type wall; faces ((0 4 7 3) (9 10 14 13)); }
+    leftInterface  { type cyclicAMI; neighbourPatch rightInterface; transform noOrdering; faces ((1 2 6 5)); }
+    rightInterface { type cyclicAMI; neighbourPatch leftInterface; transform noOrdering; faces ((8 12 15 11)); }
+    frontAndBack { type empty; faces ((0 3 2 1) (4 5 6 7) (8 11 10 9) (12 13 14 15)); }
+);
+]=])
+  file(WRITE ${pluginCase}/system/blockMeshDict "${text}")
+  file(READ ${pluginCase}/0/pointDisplacement text)
+  string(REGEX REPLACE "(frontAndBack)"
+         "leftInterface { type cyclicAMI; }\n    rightInterface { type cyclicAMI; }\n    \\1" text "${text}")
+  file(WRITE ${pluginCase}/0/pointDisplacement "${text}")
+  runIn(${pluginCase} 0 blockMesh blockMesh)
+  runIn(${pluginCase} FAIL moveDynamicMesh moveDynamicMesh)
+  expectContains("${moveDynamicMesh_out}" "FOAM FATAL ERROR" "moveDynamicMesh's output")
+  expectContains("${moveDynamicMesh_out}" "patch leftInterface is of type cyclicAMI" "moveDynamicMesh's output")
+  file(GLOB written ${pluginCase}/0.*)
+  if(written)
+    fail("a refused case wrote ${written}")
+  endif()
 
 elseif(MODE STREQUAL "serial3D")
   compareOneStep(cube 1e-9 "solved in 3D")

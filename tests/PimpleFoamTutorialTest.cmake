@@ -89,16 +89,22 @@ if(NOT status EQUAL 0 OR NOT out MATCHES "\nEnd\n")
   fail("pimpleFoam (${MOTION}): exit status ${status}, no End\nstdout (end):\n${out}\nstderr:\n${err}")
   return()
 endif()
-# pimpleFoam's "Time = t" lines (rbm's plugin logs "Time = t  sub-steps ..." lines too).
+# pimpleFoam's "Time = t" lines, and no other line starting "Time = " (foamLog-style parsers
+# would count a step twice).
 string(REGEX MATCHALL "\nTime = [0-9.eE+-]+\n" steps "${out}")
 list(LENGTH steps stepCount)
 if(NOT stepCount EQUAL STEPS)
   fail("pimpleFoam: ${stepCount} time steps, expected ${STEPS}")
 endif()
+string(REGEX MATCHALL "\nTime = " timeLines "${out}")
+list(LENGTH timeLines timeLineCount)
+if(NOT timeLineCount EQUAL STEPS)
+  fail("pimpleFoam's log has ${timeLineCount} lines starting 'Time = ' for ${STEPS} steps")
+endif()
 
 if(MOTION STREQUAL "rbm")
-  # rbm's own line per step: "Time = t  sub-steps n ... max non-orthogonality a  inverted n ...".
-  string(REGEX MATCHALL "\nTime = [^\n]* inverted [0-9]+" rbmLines "${out}")
+  # rbm's own line per step: "rigidBodyMotionSolver: sub-steps n ... inverted n ...".
+  string(REGEX MATCHALL "\nrigidBodyMotionSolver: sub-steps [^\n]* inverted [0-9]+" rbmLines "${out}")
   list(LENGTH rbmLines rbmCount)
   if(NOT rbmCount EQUAL STEPS)
     fail("rbm's plugin logged ${rbmCount} steps, expected ${STEPS}")

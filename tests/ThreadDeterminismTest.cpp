@@ -392,6 +392,34 @@ TEST(ThreadCount, PolicyIsOmpNumThreadsElseTheCoresElseOnePerRank)
 #endif
 }
 
+// Inside OpenFOAM (the plugin): one core per process, OpenFOAM's convention, unless
+// OMP_NUM_THREADS asks for more; a machine with several cores changes nothing.
+TEST(ThreadCount, InsideAHostOneThreadUnlessOmpNumThreadsSaysOtherwise)
+{
+#ifndef _OPENMP
+    GTEST_SKIP() << "built without OpenMP";
+#else
+    const char* saved = std::getenv("OMP_NUM_THREADS");
+    const std::string savedValue = saved ? saved : "";
+    const int before = threadCount();
+    unsetenv("OMP_NUM_THREADS");
+    setThreadCount(omp_get_num_procs() + 1);   // as if OpenMP had chosen every core and more
+    EXPECT_EQ(applyHostThreadCountPolicy(), 1);
+    EXPECT_EQ(threadCount(), 1);
+    EXPECT_EQ(threadsInAParallelRegion(), 1);
+    setenv("OMP_NUM_THREADS", "3", 1);
+    setThreadCount(3);   // what OpenMP would have read from OMP_NUM_THREADS=3 at start-up
+    EXPECT_EQ(applyHostThreadCountPolicy(), 3);
+    EXPECT_EQ(threadsInAParallelRegion(), 3);
+    if (saved) {
+        setenv("OMP_NUM_THREADS", savedValue.c_str(), 1);
+    } else {
+        unsetenv("OMP_NUM_THREADS");
+    }
+    setThreadCount(before);
+#endif
+}
+
 // CHOLMOD's numeric factorisation asks for num_threads(4) whatever OMP_NUM_THREADS says:
 // with one thread, such a region must run on one thread too (src/ThreadCount.cpp).
 TEST(ThreadCount, OneThreadHoldsForRegionsThatAskForMore)

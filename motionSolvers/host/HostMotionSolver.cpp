@@ -9,6 +9,7 @@
 #include "RigidBodyMotionSolver.hpp"
 #include "RunLog.hpp"
 #include "StepAssessment.hpp"
+#include "ThreadCount.hpp"
 
 #include <chrono>
 #include <mutex>
@@ -101,6 +102,7 @@ HostMotionSolver::HostMotionSolver(const HostMesh& mesh, const std::string& coef
                                    const std::string& caseDirectory)
     : impl_(std::make_unique<Impl>())
 {
+    applyHostThreadCountPolicy();
     try {
         impl_->mesh = toPolyMesh(mesh);
         const io::Dictionary coefficients = io::Dictionary::parseText(coefficientsText, coefficientsFile);
@@ -165,7 +167,7 @@ HostStepReport HostMotionSolver::solve(int step, double time, const std::string&
     report.wallSeconds = record.wallSeconds;
     report.finite = verdict.finite;
     report.valid = verdict.valid;
-    report.logLine = io::formatStepLogLine(record, static_cast<int>(std::max<std::size_t>(8, timeName.size())));
+    report.logLine = "rigidBodyMotionSolver: " + io::formatStepFigures(record);
     if (!verdict.valid)
         report.problem = motion::invalidStepCause(verdict, record) + ". " +
                          motion::invalidStepAdvice(verdict, record,

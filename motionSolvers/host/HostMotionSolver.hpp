@@ -90,7 +90,8 @@ struct HostStepReport {
     double wallSeconds = 0.0;      // solve and checks
     bool finite = true;            // no NaN or infinite displacement or residual
     bool valid = true;             // converged, finite and no inverted cell
-    std::string logLine;           // rbmMoveMesh's log line for this step
+    std::string logLine;           // "rigidBodyMotionSolver: " + rbmMoveMesh's figures for this step
+                                   // (no "Time = ": the host prints its own)
     std::string problem;           // why the step is not valid (empty when it is), with advice
 };
 

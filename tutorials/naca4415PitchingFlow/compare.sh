@@ -142,15 +142,16 @@ for m in "${motions[@]}"; do
   fi
   row[$m,co]=$(awk '/^Time = [^ ]+$/{n++} /^Courant Number/{if (n <= 20) {if ($6+0 > a) a=$6+0} else if ($6+0 > b) b=$6+0}
                     END{printf "%.2f, %.2f", a, b}' "$f/log.pimpleFoam")
-  # (rbm's plugin adds its own "Time = t  sub-steps ..." line to every step: counted apart.)
-  # rbm's own line per step (plugin): "Time = t  sub-steps n  iterations n  residual r
-  # worst quality q  max non-orthogonality a  inverted n  wall s s".
+  # rbm's own line per step (plugin), after OpenFOAM's "Time = t": "rigidBodyMotionSolver:
+  # sub-steps n  iterations n  residual r  worst quality q  max non-orthogonality a  inverted n
+  # wall s s".
   row[$m,own]=$(awk '
-    /sub-steps .* inverted /{
+    /^Time = [^ ]+$/{t=$3}
+    /^rigidBodyMotionSolver: sub-steps .* inverted /{
       n++
       for (i=1;i<=NF;i++) {
-        if ($i=="quality" && (q=="" || $(i+1)+0 < q)) {q=$(i+1)+0; tq=$3}
-        if ($i=="non-orthogonality" && $(i+1)+0 > a) {a=$(i+1)+0; ta=$3}
+        if ($i=="quality" && (q=="" || $(i+1)+0 < q)) {q=$(i+1)+0; tq=t}
+        if ($i=="non-orthogonality" && $(i+1)+0 > a) {a=$(i+1)+0; ta=t}
         if ($i=="inverted" && $(i+1)+0 > inv) inv=$(i+1)+0
         if ($i=="wall") w+=$(i+1)
       }
