@@ -820,6 +820,8 @@ int MoveMeshRun::run()
             checkBoundaryDisplacementIsFinite(time);
             const motion::MotionSolveReport solve = solver_->solve();
             points = solver_->curPoints();
+            for (const std::string& warning : solve.warnings)
+                err_ << "rbmMoveMesh: warning: time " << name << ": " << warning << '\n';
 
             // A solve that produced NaN or infinite values failed whatever it reports; such a
             // mesh is never written (not even with -writeInvalid) and stops the run.

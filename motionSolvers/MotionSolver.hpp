@@ -47,6 +47,7 @@ struct MotionSolveReport {
     Label invertedCellCount = 0; // cells with non-positive volume (3D) or area (2D) in curPoints()
     double worstQuality = 0.0;   // smallest cell quality (2D: q / F_shape; 3D: smallest pyramid ratio)
     Label untangledCellCount = 0; // inverted cells the solver's untangling stage repaired (rigidBodyMotionSolver)
+    std::vector<std::string> warnings;  // what the front door must tell the user (a patch leaving its plane, ...)
     double wallSeconds = 0.0;
 };
 

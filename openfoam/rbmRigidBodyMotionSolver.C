@@ -284,6 +284,11 @@ void Foam::rbmRigidBodyMotionSolver::solve()
     globalMesh_->scatter(displacement_, u);
 
     Info<< report.logLine.c_str() << endl;
+    for (const std::string& warning : report.warnings)
+    {
+        WarningInFunction
+            << "rigidBodyMotionSolver: time " << runTime.timeName() << ": " << warning.c_str() << endl;
+    }
     if (!report.valid)
     {
         if (writeInvalid_ && report.finite)

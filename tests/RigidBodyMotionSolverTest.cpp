@@ -415,7 +415,8 @@ TEST(RigidBodyMotionSolverBoundaries, PrescribedBeatsSlidingBeatsFree)
             zMin { type fixedNormalSlip; n (0 0 2); }
             zMax { type fixedValue; value uniform (0 0 0); }
         })", "0/pointDisplacement");
-    auto solver = makeSolver(mesh, "", &field);
+    // yMax floats (by default a zeroGradient patch keeps its plane: UnconstrainedPatchesTest).
+    auto solver = makeSolver(mesh, "floatingPatches (yMax);", &field);
     const MotionSolveReport report = solver->solve();
     EXPECT_TRUE(report.converged) << report.reason;
     const RbmProblem& problem = *asRbm(*solver).problem();
@@ -426,7 +427,7 @@ TEST(RigidBodyMotionSolverBoundaries, PrescribedBeatsSlidingBeatsFree)
     EXPECT_EQ(problem.kind(point(1, 1, 0)), NodeKind::sliding);     // zMin
     EXPECT_EQ(problem.kind(point(1, 0, 0)), NodeKind::sliding);     // yMin ∩ zMin: two planes, a line along x
     EXPECT_TRUE(problem.slidesOnLine(point(1, 0, 0)));
-    EXPECT_EQ(problem.kind(point(1, 3, 1)), NodeKind::free);        // yMax: zeroGradient
+    EXPECT_EQ(problem.kind(point(1, 3, 1)), NodeKind::free);        // yMax: zeroGradient, floating
     EXPECT_EQ(problem.kind(point(1, 1, 1)), NodeKind::free);        // interior
 
     const std::vector<Vector3> points = solver->curPoints();
@@ -454,7 +455,7 @@ TEST(RigidBodyMotionSolverBoundaries, TwoDimensionalSlidingNormalsLieInThePlane)
             top    { type zeroGradient; }
             frontAndBack { type empty; }
         })", "0/pointDisplacement");
-    auto solver = makeSolver(mesh, "weighting uniform;", &field);
+    auto solver = makeSolver(mesh, "weighting uniform; floatingPatches (top);", &field);
     const MotionSolveReport report = solver->solve();
     EXPECT_TRUE(report.converged) << report.reason;
     EXPECT_EQ(report.invertedCellCount, 0);
@@ -532,7 +533,7 @@ TEST(RigidBodyMotionSolverBoundaries, FreeGroupWithoutAPrescribedNeighbourIsAnIn
 {
     const PolyMesh mesh = makeHexBox(2, 2, 2, {0, 0, 0}, {1, 1, 1});
     const io::Dictionary field = parse(R"(boundaryField { ".*" { type zeroGradient; } })", "0/pointDisplacement");
-    const std::string message = errorOf([&] { makeSolver(mesh, "", &field); });
+    const std::string message = errorOf([&] { makeSolver(mesh, "floatingPatches (\".*\");", &field); });
     EXPECT_NE(message.find("needs a prescribed patch"), std::string::npos) << message;
 }
 
@@ -767,6 +768,42 @@ TEST(RigidBodyMotionSolverTwoD, WedgeCaseMovesBothPlanesAndKeepsTheTwinsOnTheirP
         largest = std::max(largest, points[front].x - mesh.points[front].x);
     }
     EXPECT_GT(largest, 0.3);  // interior points followed the left end along the axis
+}
+
+TEST(RigidBodyMotionSolverTwoD, WedgeAxisPointsStayOnTheAxisAndSlideAlongIt)
+{
+    // An axisymmetric wedge down to the axis (y = 0, the points shared by both planes): the
+    // outer wall moves out and along the axis, the ends are fixed. Left free, the axis points
+    // would follow the outer wall off the axis and open a hole along it; they slide along it.
+    const PolyMesh mesh = makeWedge2D(8, 4, {0, 0, 0}, {8, 3, 0}, 5.0);
+    const io::Dictionary field = parse(R"(
+        boundaryField
+        {
+            top { type fixedValue; value uniform (0.6 0.4 0); }
+            left { type fixedValue; value uniform (0 0 0); }
+            right { type fixedValue; value uniform (0 0 0); }
+            front { type wedge; }
+            back { type wedge; }
+            axis { type empty; }
+        })", "0/pointDisplacement");
+    auto solver = makeSolver(mesh, "", &field);
+    const MotionSolveReport report = solver->solve();
+    ASSERT_TRUE(report.converged) << report.reason;
+    EXPECT_EQ(report.invertedCellCount, 0);
+    const RigidBodyMotionSolver& rbm = asRbm(*solver);
+    ASSERT_EQ(rbm.twoDMesh()->kind, PseudoTwoDKind::Wedge);
+    const std::vector<Vector3> points = solver->curPoints();
+    int axisPoints = 0;
+    double largestOffAxis = 0.0, largestAlongAxis = 0.0;
+    for (Label p = 0; p < static_cast<Label>(mesh.points.size()); ++p) {
+        if (mesh.points[p].y != 0.0 || mesh.points[p].z != 0.0) continue;
+        ++axisPoints;
+        largestOffAxis = std::max(largestOffAxis, std::hypot(points[p].y, points[p].z));
+        largestAlongAxis = std::max(largestAlongAxis, std::abs(points[p].x - mesh.points[p].x));
+    }
+    EXPECT_EQ(axisPoints, 9);
+    EXPECT_LT(largestOffAxis, 1e-12 * 8.0);
+    EXPECT_GT(largestAlongAxis, 0.05);  // they followed the wall along the axis
 }
 
 // ---------------------------------------------------------------------------------------

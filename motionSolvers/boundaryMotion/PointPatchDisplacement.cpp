@@ -5,6 +5,7 @@
 
 #include "Function1.hpp"
 #include "InputError.hpp"
+#include "PatchNormals.hpp"
 #include "Rotation.hpp"
 #include "SolidBodyMotion.hpp"
 
@@ -17,7 +18,6 @@ namespace rbm::motion {
 
 namespace {
 
-constexpr double vSmall = 1e-300;   // OpenFOAM VSMALL
 constexpr double small = 1e-15;     // OpenFOAM SMALL
 
 std::string joinNames(const std::vector<std::string>& names)
@@ -25,33 +25,6 @@ std::string joinNames(const std::vector<std::string>& names)
     std::string out;
     for (const auto& n : names) out += (out.empty() ? "" : " ") + n;
     return out;
-}
-
-// OpenFOAM face::areaNormal: a triangle directly, otherwise the sum of the triangles
-// (p_i, p_i+1, centre) about the point average.
-Vector3 faceAreaNormal(std::span<const Label> face, std::span<const Vector3> points)
-{
-    const std::size_t n = face.size();
-    if (n == 3) {
-        const Vector3& a = points[face[0]];
-        return 0.5 * cross(points[face[1]] - a, points[face[2]] - a);
-    }
-    Vector3 centre{};
-    for (Label p : face) centre += points[p];
-    centre /= static_cast<double>(n);
-    Vector3 area{};
-    for (std::size_t i = 0; i < n; ++i) {
-        const Vector3& a = points[face[i]];
-        const Vector3& b = points[face[(i + 1) % n]];
-        area += 0.5 * cross(b - a, centre - a);
-    }
-    return area;
-}
-
-Vector3 faceUnitNormal(std::span<const Label> face, std::span<const Vector3> points)
-{
-    const Vector3 area = faceAreaNormal(face, points);
-    return area / (norm(area) + vSmall);
 }
 
 std::string patchWhere(const PointPatchContext& context)
@@ -238,22 +211,6 @@ std::string_view patchNodeClassName(PatchNodeClass nodeClass)
     case PatchNodeClass::ignored: return "ignored";
     }
     return "unknown";
-}
-
-std::vector<Vector3> patchPointNormals(const PolyMesh& mesh, Label patchIndex, std::span<const Label> meshPoints,
-                                       std::span<const Vector3> points)
-{
-    const Patch& patch = mesh.patches.at(static_cast<std::size_t>(patchIndex));
-    // Mesh point -> patch point, only for this patch's points.
-    std::vector<Label> localIndex(static_cast<std::size_t>(mesh.pointCount()), -1);
-    for (std::size_t i = 0; i < meshPoints.size(); ++i) localIndex[static_cast<std::size_t>(meshPoints[i])] = static_cast<Label>(i);
-    std::vector<Vector3> normals(meshPoints.size(), Vector3{});
-    for (Label f = patch.startFace; f < patch.startFace + patch.faceCount; ++f) {
-        const Vector3 n = faceUnitNormal(mesh.face(f), points);
-        for (Label p : mesh.face(f)) normals[static_cast<std::size_t>(localIndex[static_cast<std::size_t>(p)])] += n;
-    }
-    for (Vector3& n : normals) n /= norm(n) + vSmall;
-    return normals;
 }
 
 Vector3 patchPlaneNormal(const PolyMesh& mesh, Label patchIndex, std::span<const Vector3> points, const std::string& file)

@@ -60,6 +60,7 @@
 
 #include "FoamDictionary.hpp"
 #include "PointVectorField.hpp"
+#include "PatchNormals.hpp"
 #include "PolyMesh.hpp"
 #include "Vector3.hpp"
 
@@ -85,11 +86,7 @@ std::string_view patchNodeClassName(PatchNodeClass nodeClass);
 
 // patchMeshPoints (OpenFOAM's localPoints order of a patch): PolyMesh.hpp.
 
-// Unit normal per patch point (OpenFOAM PrimitivePatch::pointNormals): the normalised sum of the
-// unit normals (face::unitNormal, triangle fan about the point average) of the patch faces
-// using the point. `meshPoints` from patchMeshPoints; `points` are all mesh point positions.
-std::vector<Vector3> patchPointNormals(const PolyMesh& mesh, Label patchIndex, std::span<const Label> meshPoints,
-                                       std::span<const Vector3> points);
+// patchPointNormals (OpenFOAM's PrimitivePatch::pointNormals): PatchNormals.hpp.
 
 // Unit normal of a planar patch (OpenFOAM symmetryPlanePolyPatch: the average of the unit face
 // normals). Throws rbm::InputError (naming `file`) when a face normal differs from the average

@@ -165,6 +165,7 @@ HostStepReport HostMotionSolver::solve(int step, double time, const std::string&
     report.maxNonOrthogonality = record.maxNonOrthogonality;
     report.maxSkewness = record.maxSkewness;
     report.wallSeconds = record.wallSeconds;
+    report.warnings = solve.warnings;
     report.finite = verdict.finite;
     report.valid = verdict.valid;
     report.logLine = "rigidBodyMotionSolver: " + io::formatStepFigures(record);

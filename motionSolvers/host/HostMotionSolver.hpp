@@ -93,6 +93,7 @@ struct HostStepReport {
     std::string logLine;           // "rigidBodyMotionSolver: " + rbmMoveMesh's figures for this step
                                    // (no "Time = ": the host prints its own)
     std::string problem;           // why the step is not valid (empty when it is), with advice
+    std::vector<std::string> warnings;  // to show the user (a floating patch leaving its plane, ...)
 };
 
 class HostMotionSolver {

@@ -181,7 +181,7 @@ const std::vector<std::string_view>& RigidBodyMotionOptions::keywords()
     static const std::vector<std::string_view> words{
         "coupling",  "formulation",   "algorithm",         "weighting",     "subSteps",
         "maxSubStepSplits", "maxSubSteps", "tolerance", "relativeTolerance", "displacementTolerance", "maxIterations",
-        "linearSolver", "petscOptions", "stiffening", "untangle"};
+        "linearSolver", "petscOptions", "stiffening", "untangle", "floatingPatches"};
     return words;
 }
 
@@ -281,6 +281,12 @@ RigidBodyMotionOptions RigidBodyMotionOptions::read(const io::Dictionary& coeffi
             options.stiffening = readStiffening(entry);
         } else if (keyword == "untangle") {
             options.untangle = readChoice(entry, {"on", "off"}) == "on";
+        } else if (keyword == "floatingPatches") {
+            io::TokenStream stream = entry.stream();
+            if (stream.atEnd()) failAt(entry, "'floatingPatches' needs a list of patches, e.g. (outlet)");
+            options.floatingPatches = stream.readWordList(100000);
+            if (!stream.atEnd()) failAt(entry, "unexpected '" + stream.peek().text + "' after the patch list of 'floatingPatches'");
+            options.floatingPatchesLine = entry.line();
         }
     }
     return options;

@@ -25,6 +25,8 @@
 //                                                 //     quadratic inverseDistance (a b);
 //                                                 //     power 0.8 inverseDistance (a b)
 //         untangle          on;                   // on | off: repair cells the solve left inverted
+//         floatingPatches   (outlet "free.*");    // patches (names, groups or regular expressions)
+//                                                 //   whose unconstrained points move freely
 //     }
 //
 // Unknown keywords are errors that name the file and line and list the valid keywords (a
@@ -99,6 +101,11 @@ struct RigidBodyMotionOptions {
     std::vector<std::pair<std::string, std::string>> petscOptionList;  // (name, value or ""), parsed
     StiffeningOptions stiffening;
     bool untangle = true;              // untangling stage after a solve that left inverted cells (src/Untangling.hpp)
+    // Patches whose condition neither prescribes nor slides their points (zeroGradient,
+    // calculated, ...) keep their surface by default: the points slide on it. Listed here (names,
+    // groups or regular expressions, as written), they float like interior points instead.
+    std::vector<std::string> floatingPatches;
+    int floatingPatchesLine = 0;
     std::string file;                  // the dictionary's file, for later errors
 
     bool automaticSubSteps() const { return subSteps == 0; }

@@ -13,6 +13,7 @@
 #include "RbmUntangling.hpp"
 #include "ReducedNewtonSolver.hpp"
 #include "Stiffening.hpp"
+#include "UnconstrainedPatches.hpp"
 #include "SubStepping.hpp"
 #include "ThesisQuality.hpp"
 
@@ -264,6 +265,7 @@ constexpr int heldNode = -2;  // prescribed with zero displacement by the solver
 struct RigidBodyMotionSolver::Impl {
     RigidBodyMotionSolver& owner;
     RigidBodyMotionOptions options;
+    UnconstrainedPatches unconstrained;   // zeroGradient-like patches: slide on their surface or float
     int dimension = 3;
     std::unique_ptr<PseudoTwoDMesh> twoD;
     std::shared_ptr<const CellNeighbourGraph> graph;
@@ -311,6 +313,11 @@ struct RigidBodyMotionSolver::Impl {
     void chooseAutomaticStiffening(std::span<const Vector3> target);
     // Recomputes the node classes from the patch conditions; rebuilds the problem when they changed.
     void updateProblem();
+    // Adds a sliding plane (a line in 2D) of 3D normal `normal` to a node's constraint: a
+    // second plane makes it slide on their intersection line (3D), a further one holds it.
+    void addSlidingPlane(NodeConstraint& constraint, int& prescriber, Vector3 normal, bool mirror) const;
+    // Wedge meshes: the points on the axis slide along it.
+    void constrainWedgeAxis(std::vector<NodeConstraint>& classes, std::vector<int>& prescriber) const;
     std::vector<Vector3> prescribedTarget() const;
     std::unique_ptr<RbmSolver> makeSolver(const RbmProblem& forProblem) const;
     // A problem on `points` with the node classes `nodeConstraints` (by default the current
@@ -332,7 +339,7 @@ struct RigidBodyMotionSolver::Impl {
 };
 
 RigidBodyMotionSolver::Impl::Impl(RigidBodyMotionSolver& solver, RigidBodyMotionOptions solverOptions)
-    : owner(solver), options(std::move(solverOptions))
+    : owner(solver), options(std::move(solverOptions)), unconstrained(owner.mesh(), owner.points0(), options)
 {
     const PolyMesh& mesh = owner.mesh();
     if (detectPseudoTwoD(mesh) != PseudoTwoDKind::None) {
@@ -414,8 +421,15 @@ void RigidBodyMotionSolver::Impl::updateProblem()
     for (std::size_t patch = 0; patch < conditions.size(); ++patch) {
         const BoundaryPatchDescription& condition = conditions[patch];
         const BoundaryNodeClass nodeClass = condition.nodeClass;
-        if (nodeClass == BoundaryNodeClass::ignored || nodeClass == BoundaryNodeClass::free) continue;
+        if (nodeClass == BoundaryNodeClass::ignored) continue;
+        // A patch its condition leaves unconstrained keeps its surface unless it floats
+        // (UnconstrainedPatches.hpp).
+        if (nodeClass == BoundaryNodeClass::free && unconstrained.floats(static_cast<Label>(patch))) continue;
         const std::vector<Label>& points = condition.meshPoints;
+        const std::vector<Vector3>& slidingNormals =
+            nodeClass == BoundaryNodeClass::free
+                ? unconstrained.slidingNormals(static_cast<Label>(patch), points)
+                : condition.slidingNormals;
         for (std::size_t k = 0; k < points.size(); ++k) {
             const int node = twoD ? twoD->nodeOfPoint[points[k]] : points[k];
             if (node < 0) continue;
@@ -429,31 +443,10 @@ void RigidBodyMotionSolver::Impl::updateProblem()
                 continue;
             }
             if (constraint.kind == NodeKind::prescribed) continue;
-            Vector3 normal = condition.slidingNormals[k];
-            if (twoD) {
-                normal = twoD->frame.toLocal(normal);
-                normal.z = 0.0;
-            }
-            const double length = norm(normal);
-            if (!(length > 1e-8)) continue;  // a plane parallel to the 2D plane: no in-plane constraint
-            normal /= length;
-            if (constraint.kind == NodeKind::free) {
-                constraint = {NodeKind::sliding, normal, condition.mirror};
-            } else if (norm(cross(constraint.normal, normal)) <= 1e-6) {
-                constraint.mirror = constraint.mirror || condition.mirror;  // a mirror on the same plane
-            } else if (!twoD && constraint.secondNormal == Vector3{}) {
-                // Two different planes (3D): the node slides along their intersection line.
-                constraint.secondNormal = normal;
-            } else if (!twoD && std::abs(dot(normal, cross(constraint.normal, constraint.secondNormal))) <= 1e-6 *
-                                    norm(cross(constraint.normal, constraint.secondNormal))) {
-                // A further plane through the same line (its normal ⟂ the line): still that line.
-            } else {
-                // Two lines in 2D meet in a point, so do three planes in 3D: the node stays.
-                constraint = {NodeKind::prescribed, {}};
-                prescriber[node] = heldNode;
-            }
+            addSlidingPlane(constraint, prescriber[node], slidingNormals[k], condition.mirror);
         }
     }
+    if (twoD && twoD->kind == PseudoTwoDKind::Wedge) constrainWedgeAxis(classes, prescriber);
     // Nodes without neighbours (points no cell uses) cannot move.
     for (int node = 0; node < n; ++node) {
         if (graph->offsets[node + 1] == graph->offsets[node] && classes[node].kind != NodeKind::prescribed) {
@@ -491,6 +484,48 @@ void RigidBodyMotionSolver::Impl::updateProblem()
     baseSolver.reset();
     problem.reset();
     problem = problemAround(referencePoints, std::move(classes));
+}
+
+void RigidBodyMotionSolver::Impl::addSlidingPlane(NodeConstraint& constraint, int& prescriber, Vector3 normal,
+                                                  bool mirror) const
+{
+    if (twoD) {
+        normal = twoD->frame.toLocal(normal);
+        normal.z = 0.0;
+    }
+    const double length = norm(normal);
+    if (!(length > 1e-8)) return;  // a plane parallel to the 2D plane: no in-plane constraint
+    normal /= length;
+    if (constraint.kind == NodeKind::free) {
+        constraint = {NodeKind::sliding, normal, mirror};
+    } else if (norm(cross(constraint.normal, normal)) <= 1e-6) {
+        constraint.mirror = constraint.mirror || mirror;  // a mirror on the same plane
+    } else if (!twoD && constraint.secondNormal == Vector3{}) {
+        // Two different planes (3D): the node slides along their intersection line.
+        constraint.secondNormal = normal;
+    } else if (!twoD && std::abs(dot(normal, cross(constraint.normal, constraint.secondNormal))) <=
+                            1e-6 * norm(cross(constraint.normal, constraint.secondNormal))) {
+        // A further plane through the same line (its normal ⟂ the line): still that line.
+    } else {
+        // Two lines in 2D meet in a point, so do three planes in 3D: the node stays.
+        constraint = {NodeKind::prescribed, {}};
+        prescriber = heldNode;
+    }
+}
+
+void RigidBodyMotionSolver::Impl::constrainWedgeAxis(std::vector<NodeConstraint>& classes,
+                                                     std::vector<int>& prescriber) const
+{
+    // A point where the two wedge planes meet lies on the axis of the axisymmetric domain:
+    // OpenFOAM's wedge condition keeps it there (a point off the axis would open a hole along
+    // it). In the front plane the axis is a line; the point slides along it, a mirror line of
+    // the domain, unless a patch prescribes it.
+    const Vector3 acrossAxis = cross(twoD->frame.normal, twoD->wedgeAxis);
+    for (int node = 0; node < nodeCount(); ++node) {
+        if (twoD->backPointOfNode[node] != twoD->frontPointOfNode[node]) continue;
+        if (classes[node].kind == NodeKind::prescribed) continue;
+        addSlidingPlane(classes[node], prescriber[node], acrossAxis, true);
+    }
 }
 
 std::unique_ptr<RbmProblem> RigidBodyMotionSolver::Impl::problemAround(std::vector<Vector3> points,
@@ -935,6 +970,7 @@ MotionSolveReport RigidBodyMotionSolver::solve()
         impl.untangleState(report);
     }
     impl.writeBack();
+    if (impl.unconstrained.watchesPlanes()) report.warnings = impl.unconstrained.planeWarnings(curPoints());
     report.invertedCellCount = impl.countInverted(impl.state.displacement, &report.worstQuality);
     report.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     return report;
