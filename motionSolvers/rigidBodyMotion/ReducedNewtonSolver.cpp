@@ -1,6 +1,8 @@
 #include "ReducedNewtonSolver.hpp"
 
 #include "BlockRowLayout.hpp"
+#include "ConjugateGradients.hpp"
+#include "GramSchmidt.hpp"
 #include "LocalGlobalSolver.hpp"
 #include "PlanarReducedKernels.hpp"
 #include "ReducedHessian3D.hpp"
@@ -20,87 +22,6 @@
 #include <stdexcept>
 
 namespace rbm::motion {
-
-namespace {
-
-// Sums in index order: the same result for any thread count.
-double dotProduct(std::span<const double> a, std::span<const double> b)
-{
-    double sum = 0.0;
-    for (std::size_t k = 0; k < a.size(); ++k) sum += a[k] * b[k];
-    return sum;
-}
-
-double euclideanNorm(std::span<const double> a) { return std::sqrt(dotProduct(a, a)); }
-
-// Modified Gram–Schmidt on `columns` (sums in index order: the same for any thread count):
-// an orthonormal basis of their span, each kept column's coordinates in it (R's columns,
-// r[i][i] the diagonal) and the kept columns' indices. A column whose part outside the span of
-// those before it is below 1e-6 of the longest column is left out (nearly dependent).
-struct ThinQr {
-    std::vector<std::vector<double>> basis, r;
-    std::vector<std::size_t> kept;
-};
-ThinQr orthonormalise(const std::vector<std::vector<double>>& columns)
-{
-    double longest = 0.0;
-    for (const std::vector<double>& column : columns) longest = std::max(longest, euclideanNorm(column));
-    ThinQr qr;
-    for (std::size_t j = 0; j < columns.size(); ++j) {
-        std::vector<double> v = columns[j];
-        std::vector<double> coordinates(qr.basis.size() + 1, 0.0);
-        for (std::size_t i = 0; i < qr.basis.size(); ++i) {
-            coordinates[i] = dotProduct(qr.basis[i], v);
-            for (std::size_t k = 0; k < v.size(); ++k) v[k] -= coordinates[i] * qr.basis[i][k];
-        }
-        const double remaining = euclideanNorm(v);
-        if (!(remaining > 1e-6 * longest)) continue;
-        coordinates.back() = remaining;
-        for (double& value : v) value /= remaining;
-        qr.basis.push_back(std::move(v));
-        qr.r.push_back(std::move(coordinates));
-        qr.kept.push_back(j);
-    }
-    return qr;
-}
-
-// Preconditioned conjugate gradients on A x = b from x = 0 to ‖r‖ ≤ relativeTolerance ‖b‖:
-// multiply(p, q) sets q = A p, precondition(r, z) sets z = M⁻¹ r. False on a direction of
-// non-positive curvature, or when maximumIterations do not reach the tolerance. work: four
-// vectors, resized here (kept by a caller that solves often).
-template <typename Multiply, typename Precondition>
-bool conjugateGradients(Multiply&& multiply, Precondition&& precondition, std::span<const double> b, std::span<double> x,
-                        double relativeTolerance, int maximumIterations, std::array<std::vector<double>, 4>& work)
-{
-    const std::size_t size = b.size();
-    auto& [r, z, p, q] = work;
-    for (std::vector<double>* vector : {&r, &z, &p, &q}) vector->resize(size);
-    std::copy(b.begin(), b.end(), r.begin());
-    std::fill(x.begin(), x.end(), 0.0);
-    const double target = relativeTolerance * euclideanNorm(r);
-    precondition(std::span<const double>(r), std::span<double>(z));
-    p = z;
-    double rz = dotProduct(r, z);
-    for (int iteration = 0;; ++iteration) {
-        if (euclideanNorm(r) <= target) return true;
-        if (iteration == maximumIterations) return false;
-        multiply(std::span<const double>(p), std::span<double>(q));
-        const double curvature = dotProduct(p, q);
-        if (!(curvature > 0.0)) return false;
-        const double alpha = rz / curvature;
-        for (std::size_t k = 0; k < size; ++k) {
-            x[k] += alpha * p[k];
-            r[k] -= alpha * q[k];
-        }
-        precondition(std::span<const double>(r), std::span<double>(z));
-        const double next = dotProduct(r, z);
-        const double beta = next / rz;
-        rz = next;
-        for (std::size_t k = 0; k < size; ++k) p[k] = z[k] + beta * p[k];
-    }
-}
-
-} // namespace
 
 ReducedNewtonSolver::ReducedNewtonSolver(const RbmProblem& problem, ReducedNewtonOptions options)
     : problem_(problem), options_(options)
