@@ -1,5 +1,6 @@
 #include "ReducedNewtonSolver.hpp"
 
+#include "BacktrackingLineSearch.hpp"
 #include "BlockRowLayout.hpp"
 #include "ConjugateGradients.hpp"
 #include "GramSchmidt.hpp"
@@ -1238,38 +1239,27 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
 
         // Backtracking (Armijo) on Ẽ; where Ẽ no longer resolves the decrease, a step that
         // lowers ‖P∇Ẽ‖ is taken (CoupledNewtonSolver's line search).
-        const double roundoff = 1e-13 * std::abs(energy) + 1e-300;
-        double lambda = 1.0;
-        bool accepted = false;
-        double trialEnergy = energy, trialGradientNorm = gradientNorm;
-        for (int attempt = 0; attempt < 40 && !accepted; ++attempt) {
-            moveAlong(u, step, lambda);
-            trialEnergy = fitAndEnergy(trial, trialRotations);
-            bool gradientKnown = false;
-            if (std::isfinite(trialEnergy) && trialEnergy <= energy + 1e-4 * lambda * slope) {
-                accepted = true;
-            } else if (std::isfinite(trialEnergy) && trialEnergy <= energy + roundoff) {
+        bool gradientKnown = false;  // trialGradient is the last trial point's
+        double trialGradientNorm = gradientNorm;
+        const LineSearchResult search = backtrackingLineSearch(
+            energy, slope,
+            [&](double lambda) {
+                moveAlong(u, step, lambda);
+                gradientKnown = false;
+                return fitAndEnergy(trial, trialRotations);
+            },
+            [&] {
                 gradient(trial, trialRotations, trialGradient);
                 trialGradientNorm = euclideanNorm(trialGradient);
                 gradientKnown = true;
-                accepted = trialGradientNorm < gradientNorm;
-            }
-            if (accepted) {
-                if (!gradientKnown) {
-                    gradient(trial, trialRotations, trialGradient);
-                    trialGradientNorm = euclideanNorm(trialGradient);
-                }
-                break;
-            }
-            // Minimiser of the quadratic through Ẽ(0), Ẽ'(0) and Ẽ(λ), kept in [0.1 λ, 0.5 λ].
-            double next = 0.5 * lambda;
-            if (std::isfinite(trialEnergy)) {
-                const double curvature = trialEnergy - energy - slope * lambda;
-                if (curvature > 0.0) next = -slope * lambda * lambda / (2.0 * curvature);
-            }
-            lambda = std::clamp(next, 0.1 * lambda, 0.5 * lambda);
+                return trialGradientNorm < gradientNorm;
+            });
+        if (search.accepted && !gradientKnown) {
+            gradient(trial, trialRotations, trialGradient);
+            trialGradientNorm = euclideanNorm(trialGradient);
         }
-        if (!accepted) {
+        const double lambda = search.lambda, trialEnergy = search.energy;
+        if (!search.accepted) {
             reason = "DIVERGED_LINE_SEARCH";
             break;
         }
