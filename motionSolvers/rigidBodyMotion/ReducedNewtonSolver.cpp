@@ -25,7 +25,8 @@
 namespace rbm::motion {
 
 ReducedNewtonSolver::ReducedNewtonSolver(const RbmProblem& problem, ReducedNewtonOptions options)
-    : problem_(problem), options_(options)
+    : problem_(problem), options_(options), reducedEnergy_(problem),
+      preconditioner_(problem, options.linearSolver, options.laplacianRelativeTolerance)
 {
     const int n = problem.nodeCount();
     const int dim = problem.dimension();
@@ -51,20 +52,6 @@ ReducedNewtonSolver::ReducedNewtonSolver(const RbmProblem& problem, ReducedNewto
         RBM_CHECK_PETSC(PetscOptionsGetBool(nullptr, "rbm_reduced_", "-harmonic_basis", &harmonicBasis, nullptr));
         options_.harmonicBasis = harmonicBasis == PETSC_TRUE;
     }
-    // Per unknown node Σ_j w and Σ_j w |d| of the round-off level of ∇Ẽ (solve): the weights do
-    // not change during the solver's life (K is factorised from them), so once here and not at
-    // every time step (1.3 ms a step on the 40k-node airfoil).
-    weightSums_.assign(problem.unknownNodeCount(), 0.0);
-    weightedLengths_.assign(problem.unknownNodeCount(), 0.0);
-    for (int a = 0; a < problem.unknownNodeCount(); ++a) {
-        const int i = problem.unknownNodes()[a];
-        for (int e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e) {
-            Vector3 d = problem.referencePoints()[graph.neighbours[e]] - problem.referencePoints()[i];
-            if (dim == 2) d.z = 0.0;
-            weightSums_[a] += problem.edgeWeights()[e];
-            weightedLengths_[a] += problem.edgeWeights()[e] * norm(d);
-        }
-    }
     // Only the displacement test needs the nodes' shortest edges.
     if (options.displacementTolerance > 0.0) inverseShortestEdge_.assign(problem.unknownNodeCount(), 0.0);
     for (int a = 0; a < static_cast<int>(inverseShortestEdge_.size()); ++a) {
@@ -87,312 +74,9 @@ ReducedNewtonSolver::ReducedNewtonSolver(const RbmProblem& problem, ReducedNewto
         forcingExponent_ = 0.5 * (1.0 + std::sqrt(5.0));
         finalForcingFactor_ = 0.2;
     }
-    if (problem.unknownNodeCount() == 0) return;
-    // The kernels of Ẽ, ∇Ẽ and S: 2D (PlanarReducedKernels.hpp) or 3D (ReducedHessian3D.hpp for S;
-    // per-node data only, nothing stored per edge).
-    if (dim == 2) planar_ = std::make_unique<PlanarReducedKernels>(problem);
-    else hessian3D_ = std::make_unique<ReducedHessian3D>(problem);
-
-    // K: the displacement block of the Hessian, factorised once (file comment).
-    const BlockPattern& pattern = problem.blockPattern();
-    laplacian_ = coupledDisplacementLaplacian(problem);
-    vectorSystem_ = problem.hasSlidingNodes();
-    const int blockSize = vectorSystem_ ? dim : 1;
-    PetscMPIInt ranks = 1;
-    RBM_CHECK_PETSC(MPI_Comm_size(solverCommunicator(), &ranks));
-    // rbm's own factorisation and back-substitution wherever K would be factorised on one rank,
-    // unless the user chose K's solver or package through PETSc's options (-rbm_reduced_…,
-    // -rbm_… or global): then PETSc's KSP, as configured. On the airfoil a back-substitution of
-    // both components in a time step takes about 2.3 ms (supernodal rows, single-precision
-    // entries read ahead: SparseCholesky.hpp; 3.2 ms before the read-ahead) against 4.1 ms
-    // with double entries, 5.9 ms with the compressed
-    // columns of the previous version and 9 ms with PETSc's MatMatSolve; the CG iterations are
-    // the same (271 against 266 over the 20-step pitching series).
-    bool userChoseSolver = false;
-    for (const char* prefix : {"rbm_reduced_", "rbm_", static_cast<const char*>(nullptr)})
-        for (const char* name : {"-ksp_type", "-pc_type", "-pc_factor_mat_solver_type"}) {
-            PetscBool given = PETSC_FALSE;
-            RBM_CHECK_PETSC(PetscOptionsHasName(nullptr, prefix, name, &given));
-            // (Another living solver's copies and defaults under -rbm_reduced_ are not a choice.)
-            const std::string fullName = "-" + std::string(prefix ? prefix : "") + std::string(name + 1);
-            userChoseSolver = userChoseSolver || (given == PETSC_TRUE && !InheritedOptions::isHeldCopy(fullName));
-        }
-    const bool factorised = options.linearSolver == LinearSolverKind::direct ||
-                            (options.linearSolver == LinearSolverKind::automatic &&
-                             (dim == 2 || problem.unknownNodeCount() <= directSolverRowLimit));
-    if (!vectorSystem_ && ranks == 1 && factorised && !userChoseSolver && SparseCholesky::available()) {
-        cholesky_ = std::make_unique<SparseCholesky>(problem.unknownNodeCount(), pattern.rowOffsets, pattern.columns,
-                                                     laplacian_, FactorPrecision::single);
-        return;
-    }
-#if defined(PETSC_HAVE_SUITESPARSE)
-    // One rank, scalar K: CHOLMOD's supernodal Cholesky. On the 40k-node airfoil its
-    // back-substitution costs 6.5 MFlop against MUMPS's 350 (PETSc's flop count, -log_view), and
-    // the back-substitutions are most of this solver's work.
-    if (!vectorSystem_ && ranks == 1) {
-        laplacianOptions_ = std::make_unique<InheritedOptions>("reduced");
-        laplacianOptions_->addDefault("pc_factor_mat_solver_type", "cholmod");
-    }
-#endif
-    // 3D on one rank with K solved iteratively: ONE multigrid hierarchy of K, set up here on
-    // laplacian_ itself (PETSc keeps no copy of K) and applied as one V-cycle to the three
-    // components at once (ThreeVectorMultigrid.hpp, precondition). Another preconditioner chosen
-    // by options: the BlockSystemSolver below.
-    const bool laplacianIterative =
-        options.linearSolver == LinearSolverKind::iterative || options.linearSolver == LinearSolverKind::matrixFree ||
-        (options.linearSolver == LinearSolverKind::automatic && problem.unknownNodeCount() > directSolverRowLimit);
-    // With sliding nodes the same cycle of the scalar K, between projections onto the sliding
-    // planes, preconditions CG on the projected K ⊗ I, solved to laplacianRelativeTolerance
-    // (projectedCycleSolve). Before, PETSc's CG + GAMG on the projected K ⊗ I: on the
-    // boundary-layer airfoil solved in 3D between two symmetry planes, about 350 iterations per
-    // application of K⁻¹ and 40 s for the step; now about 11 and 5.9 s, the same minimum
-    // (docs/motionSolver.md, "Reduced Newton"). One cycle alone (no inner CG) was too rough there
-    // an estimate of K⁻¹ for the start and the displacement test: it stopped 7.9e-4 chord from
-    // the minimum.
-    // In 2D (K iterative: `linearSolver iterative` or `matrixFree`, which rbmMoveMesh suggests
-    // when K's factorisation does not fit in memory) K ⊗ I is solved the same way, by CG + the
-    // cycle to laplacianRelativeTolerance. One cycle alone (before: one PCGAMG cycle) was no K⁻¹
-    // on a boundary-layer mesh: on the benchmark's airfoil the start's energy was 7.6e9 instead
-    // of 4, and Newton stalled with steps of 1e-15 (more than 300 s, no result); now 1.3 s for
-    // the whole run, within 7.2e-7 chord of the factorised result.
-#if defined(PETSC_HAVE_HYPRE)
-    // 2D, K solved iteratively on several ranks (rbm's own cycle is one rank's): PETSc's CG with
-    // hypre's BoomerAMG by default instead of GAMG. K is a weighted graph Laplacian, an
-    // M-matrix, the case classical AMG is made for, and on a boundary-layer mesh its weights
-    // span many orders (1/|d|², wall cells of aspect ratio ~870). There GAMG's smoothed
-    // aggregation does not converge: on the benchmark's airfoil with `linearSolver iterative`
-    // and two ranks CG + GAMG stopped with DIVERGED_LINEAR_SOLVE and exit 1 after 11 s (also
-    // with -pc_gamg_threshold 0.02); CG + BoomerAMG: 1.6 s, 0 inverted cells, within 7.5e-7
-    // chord of the factorised run. In 3D (one cycle as K⁻¹) GAMG stays: on the 10⁵-cell
-    // twisted cube it took 2.3 s for the step against BoomerAMG's 3.6 s, and on the same
-    // airfoil solved in 3D between symmetry planes both took 21 s (docs/motionSolver.md,
-    // "Reduced Newton"). -rbm_reduced_pc_type gamg brings GAMG back.
-    if (ranks > 1 && !factorised && dim == 2) {
-        if (!laplacianOptions_) laplacianOptions_ = std::make_unique<InheritedOptions>("reduced");
-        laplacianOptions_->addDefault("pc_type", "hypre");
-    }
-#endif
-    if (laplacianIterative) {
-        PetscBool inner = PETSC_FALSE;
-        RBM_CHECK_PETSC(PetscOptionsHasName(nullptr, "rbm_reduced_", "-inner_solve", &inner));
-        if (!inner) threeVectorCycle_ = ThreeVectorMultigrid::build(pattern.rowOffsets, pattern.columns, laplacian_, "reduced");
-        if (threeVectorCycle_) {
-            laplacianByCycle_ = true;
-            return;
-        }
-    }
-    system_ = std::make_unique<BlockSystemSolver>(pattern.rowOffsets, pattern.columns, blockSize,
-                                                  MatrixSymmetry::symmetricPositiveDefinite, options.linearSolver, dim,
-                                                  options.laplacianRelativeTolerance, "reduced");
-    if (!vectorSystem_) {
-        system_->setMatrix(laplacian_);
-    } else {
-        std::vector<double> blocks(static_cast<std::size_t>(pattern.blockCount()) * dim * dim, 0.0);
-        for (int position = 0; position < pattern.blockCount(); ++position)
-            for (int q = 0; q < dim; ++q)
-                blocks[(static_cast<std::size_t>(position) * dim + q) * dim + q] = laplacian_[position];
-        problem.projectSlidingBlocks(blocks, dim);
-        system_->setMatrix(blocks);
-    }
-    // One rank and a factorisation (not the user's choice of an iterative method): all components at once.
-    multipleRightHandSides_ = !vectorSystem_ && system_->isDirect() && ranks == 1;
-    if (!system_->isDirect()) {
-        PetscBool inner = PETSC_FALSE;
-        RBM_CHECK_PETSC(PetscOptionsHasName(nullptr, "rbm_reduced_", "-inner_solve", &inner));
-        // One PETSc cycle as K⁻¹ only in 3D: in 2D (here with -parallel, or with the options'
-        // own preconditioner) one PCGAMG cycle was no K⁻¹ on a boundary-layer mesh (see above),
-        // so K ⊗ I is solved to laplacianRelativeTolerance.
-        laplacianByCycle_ = !inner && dim == 3;
-    }
-    componentIn_.resize(problem.unknownNodeCount());
-    componentOut_.resize(problem.unknownNodeCount());
 }
 
 ReducedNewtonSolver::~ReducedNewtonSolver() = default;
-
-double ReducedNewtonSolver::fitAndEnergy(std::span<const Vector3> displacement, std::vector<Matrix3>& rotations) const
-{
-    if (planar_) return planar_->fitAndEnergy(displacement, rotations);
-    fitNodeRotations(problem_, displacement, rotations);
-    const CellNeighbourGraph& graph = problem_.graph();
-    const std::vector<Vector3>& x = problem_.referencePoints();
-    const std::vector<int>& nodes = problem_.unknownNodes();
-    const int m = problem_.unknownNodeCount();
-    const bool planar = problem_.dimension() == 2;
-    std::vector<double> nodeEnergy(static_cast<std::size_t>(m));
-#pragma omp parallel for schedule(static) if (worthThreading(graph.neighbours.size()))
-    for (int a = 0; a < m; ++a) {
-        const int i = nodes[a];
-        double sum = 0.0;
-        for (int e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e) {
-            const int j = graph.neighbours[e];
-            Vector3 d = x[j] - x[i];
-            Vector3 relative = displacement[j] - displacement[i];
-            if (planar) d.z = relative.z = 0.0;
-            sum += problem_.edgeWeights()[e] * normSquared(relative + d - rotations[i] * d);
-        }
-        nodeEnergy[a] = sum;
-    }
-    double sum = 0.0;
-    for (double value : nodeEnergy) sum += value;
-    return 0.5 * sum;
-}
-
-void ReducedNewtonSolver::gradient(std::span<const Vector3> displacement, std::span<const Matrix3> rotations,
-                                   std::span<double> g) const
-{
-    if (planar_) {
-        planar_->gradient(displacement, rotations, g);
-        problem_.projectSliding(g, problem_.dimension());
-        return;
-    }
-    const CellNeighbourGraph& graph = problem_.graph();
-    const std::vector<Vector3>& x = problem_.referencePoints();
-    const std::vector<int>& nodes = problem_.unknownNodes();
-    const int m = problem_.unknownNodeCount();
-    const int dim = problem_.dimension();
-    const bool planar = dim == 2;
-#pragma omp parallel for schedule(static) if (worthThreading(graph.neighbours.size()))
-    for (int a = 0; a < m; ++a) {
-        const int k = nodes[a];
-        Vector3 sum{};
-        for (int e = graph.offsets[k]; e < graph.offsets[k + 1]; ++e) {
-            const int j = graph.neighbours[e];
-            Vector3 d = x[j] - x[k];
-            Vector3 relative = displacement[k] - displacement[j];
-            if (planar) d.z = relative.z = 0.0;
-            const bool unknown = problem_.isUnknown(j);
-            Vector3 term = (unknown ? 2.0 : 1.0) * (relative - d) + rotations[k] * d;
-            if (unknown) term += rotations[j] * d;
-            sum += problem_.edgeWeights()[e] * term;
-        }
-        for (int q = 0; q < dim; ++q) g[static_cast<std::size_t>(a) * dim + q] = sum[q];
-    }
-    problem_.projectSliding(g, dim);
-}
-
-void ReducedNewtonSolver::prepareHessian(std::span<const Vector3> displacement, std::span<const Matrix3> rotations)
-{
-    if (planar_) {
-        planar_->prepareHessian(displacement, rotations);
-        return;
-    }
-    hessian3D_->prepare(displacement, rotations);
-}
-
-void ReducedNewtonSolver::applyHessian(std::span<const double> v, std::span<double> y)
-{
-    if (hessian3D_) {
-        hessian3D_->apply(v, y);  // projects onto sliding planes itself
-        return;
-    }
-    const int dim = problem_.dimension();
-    std::vector<double>& projected = projected_;
-    projected.assign(v.begin(), v.end());
-    problem_.projectSliding(projected, dim);
-    planar_->applyHessian(projected, y);
-    problem_.projectSliding(y, dim);
-}
-
-bool ReducedNewtonSolver::precondition(std::span<const double> r, std::span<double> z)
-{
-    const int m = problem_.unknownNodeCount();
-    const int dim = problem_.dimension();
-    if (cholesky_) {
-        cholesky_->solve(r, z, dim);  // compact vectors are interleaved by node already
-        return true;
-    }
-    if (!vectorSystem_ && multipleRightHandSides_) {
-        // Every component in one back-substitution (MatMatSolve): the factor is read once.
-        if (!factor_) {
-            KSP ksp = system_->ksp();
-            PC pc = nullptr;
-            RBM_CHECK_PETSC(KSPSetUp(ksp));
-            RBM_CHECK_PETSC(KSPGetPC(ksp, &pc));
-            RBM_CHECK_PETSC(PCFactorGetMatrix(pc, &factor_));
-            RBM_CHECK_PETSC(MatCreateSeqDense(PETSC_COMM_SELF, m, dim, nullptr, components_.out()));
-            RBM_CHECK_PETSC(MatCreateSeqDense(PETSC_COMM_SELF, m, dim, nullptr, solutions_.out()));
-        }
-        PetscScalar* in = nullptr;
-        RBM_CHECK_PETSC(MatDenseGetArrayWrite(components_, &in));
-        for (int a = 0; a < m; ++a)
-            for (int q = 0; q < dim; ++q) in[static_cast<std::size_t>(q) * m + a] = r[static_cast<std::size_t>(a) * dim + q];
-        RBM_CHECK_PETSC(MatDenseRestoreArrayWrite(components_, &in));
-        RBM_CHECK_PETSC(MatMatSolve(factor_, components_, solutions_));
-        const PetscScalar* out = nullptr;
-        RBM_CHECK_PETSC(MatDenseGetArrayRead(solutions_, &out));
-        for (int a = 0; a < m; ++a)
-            for (int q = 0; q < dim; ++q) z[static_cast<std::size_t>(a) * dim + q] = out[static_cast<std::size_t>(q) * m + a];
-        RBM_CHECK_PETSC(MatDenseRestoreArrayRead(solutions_, &out));
-        return true;
-    }
-    if (threeVectorCycle_) {
-        // One V-cycle on the three components at once (ThreeVectorMultigrid.hpp); with sliding
-        // nodes, CG on the projected K ⊗ I preconditioned by it.
-        if (!vectorSystem_ && dim == 3) {
-            threeVectorCycle_->apply(r, z);
-            return true;
-        }
-        return projectedCycleSolve(r, z, options_.laplacianRelativeTolerance);
-    }
-    if (!vectorSystem_) {
-        // The same K for every component.
-        for (int q = 0; q < dim; ++q) {
-            for (int a = 0; a < m; ++a) componentIn_[a] = r[static_cast<std::size_t>(a) * dim + q];
-            if (laplacianByCycle_) {
-                system_->applyPreconditioner(componentIn_, componentOut_);
-            } else {
-                const BlockSystemSolver::Report report = system_->solve(componentIn_, componentOut_, false);
-                if (!report.converged) return false;
-            }
-            for (int a = 0; a < m; ++a) z[static_cast<std::size_t>(a) * dim + q] = componentOut_[a];
-        }
-        return true;
-    }
-    std::vector<double> projected(r.begin(), r.end());
-    problem_.projectSliding(projected, dim);
-    const BlockSystemSolver::Report report = system_->solve(projected, z, false);
-    problem_.projectSliding(z, dim);
-    return report.converged;
-}
-
-bool ReducedNewtonSolver::projectedCycleSolve(std::span<const double> r, std::span<double> z, double relativeTolerance)
-{
-    constexpr int maximumIterations = 1000;
-    const int m = problem_.unknownNodeCount();
-    const int dim = problem_.dimension();
-    const BlockPattern& pattern = problem_.blockPattern();
-    // Every vector of the iteration stays on the sliding planes: b = P r, q = P (K ⊗ I) p,
-    // z = P C r.
-    projected_.assign(r.begin(), r.end());
-    problem_.projectSliding(projected_, dim);
-    auto multiply = [&](std::span<const double> p, std::span<double> q) {
-#pragma omp parallel for schedule(static) if (worthThreading(pattern.columns.size()))
-        for (int a = 0; a < m; ++a) {
-            double sum[3] = {0.0, 0.0, 0.0};
-            for (int position = pattern.rowOffsets[a]; position < pattern.rowOffsets[a + 1]; ++position)
-                for (int c = 0; c < dim; ++c)
-                    sum[c] += laplacian_[position] * p[static_cast<std::size_t>(pattern.columns[position]) * dim + c];
-            for (int c = 0; c < dim; ++c) q[static_cast<std::size_t>(a) * dim + c] = sum[c];
-        }
-        problem_.projectSliding(q, dim);
-    };
-    auto cycle = [&](std::span<const double> residual, std::span<double> result) {
-        if (dim == 3) {
-            threeVectorCycle_->apply(residual, result);
-        } else {  // the cycle takes three components: the third zero
-            planarIn_.resize(3 * static_cast<std::size_t>(m), 0.0);
-            planarOut_.resize(3 * static_cast<std::size_t>(m));
-            for (int a = 0; a < m; ++a)
-                for (int c = 0; c < 2; ++c) planarIn_[3 * static_cast<std::size_t>(a) + c] = residual[2 * static_cast<std::size_t>(a) + c];
-            threeVectorCycle_->apply(planarIn_, planarOut_);
-            for (int a = 0; a < m; ++a)
-                for (int c = 0; c < 2; ++c) result[2 * static_cast<std::size_t>(a) + c] = planarOut_[3 * static_cast<std::size_t>(a) + c];
-        }
-        problem_.projectSliding(result, dim);
-    };
-    return conjugateGradients(multiply, cycle, projected_, z, relativeTolerance, maximumIterations, cycleWork_);
-}
 
 double ReducedNewtonSolver::largestRelativeDisplacement(std::span<const double> v) const
 {
@@ -423,7 +107,7 @@ bool ReducedNewtonSolver::newtonDirection(std::span<const double> g, double forc
     std::fill(step.begin(), step.end(), 0.0);
     const double target = forcing * euclideanNorm(g);
     if (firstPreconditioned) z = *firstPreconditioned;
-    else if (!precondition(r, z)) return false;
+    else if (!preconditioner_.apply(r, z)) return false;
     p = z;
     // The step is good enough once K⁻¹ of its residual, the gradient it leaves to first order,
     // is half the displacement tolerance: the next Newton iteration then stops.
@@ -431,7 +115,7 @@ bool ReducedNewtonSolver::newtonDirection(std::span<const double> g, double forc
     double rz = dotProduct(r, z);
     negativeCurvature = false;
     for (int iteration = 0; iteration < options_.maximumLinearIterations; ++iteration) {
-        applyHessian(p, sp);
+        reducedEnergy_.applyHessian(p, sp);
         const double curvature = dotProduct(p, sp);
         if (!(curvature > 0.0)) {
             // Steihaug: stop at a direction of negative curvature. With nothing yet, the
@@ -448,7 +132,7 @@ bool ReducedNewtonSolver::newtonDirection(std::span<const double> g, double forc
         ++iterations;
         if (euclideanNorm(r) <= target) return true;
         previousZ.swap(z);
-        if (!precondition(r, z)) return false;
+        if (!preconditioner_.apply(r, z)) return false;
         if (displacementTarget > 0.0 && largestRelativeDisplacement(z) <= displacementTarget) return true;
         double numerator = 0.0;
         for (std::size_t k = 0; k < size; ++k) numerator += r[k] * (z[k] - previousZ[k]);
@@ -459,39 +143,13 @@ bool ReducedNewtonSolver::newtonDirection(std::span<const double> g, double forc
     return true;  // the iteration limit: the step so far still is a descent direction
 }
 
-double ReducedNewtonSolver::reducedEnergy(std::span<const Vector3> displacement)
-{
-    std::vector<Matrix3> rotations;
-    return fitAndEnergy(displacement, rotations);
-}
-
-std::vector<double> ReducedNewtonSolver::reducedGradient(std::span<const Vector3> displacement)
-{
-    std::vector<Matrix3> rotations;
-    fitAndEnergy(displacement, rotations);
-    std::vector<double> g(static_cast<std::size_t>(problem_.unknownNodeCount()) * problem_.dimension());
-    gradient(displacement, rotations, g);
-    return g;
-}
-
-std::vector<double> ReducedNewtonSolver::reducedHessianTimes(std::span<const Vector3> displacement,
-                                                             std::span<const double> direction)
-{
-    std::vector<Matrix3> rotations;
-    fitAndEnergy(displacement, rotations);
-    prepareHessian(displacement, rotations);
-    std::vector<double> y(direction.size());
-    applyHessian(direction, y);
-    return y;
-}
-
 bool ReducedNewtonSolver::turnedHarmonicStart(std::span<const Vector3> prescribedDisplacement, std::vector<Vector3>& u,
                                               std::span<const Vector3> base)
 {
     // One rank, no sliding nodes, K factorised by rbm or its 3D multigrid cycle; every prescribed
     // node either fixed (no change) or moved by one rigid motion y = R (x − c) + c', fitted here
     // (2D: the best angle; 3D: Kabsch). x: the reference positions, or those displaced by base.
-    if (vectorSystem_ || !(cholesky_ || threeVectorCycle_)) return false;
+    if (!preconditioner_.hasScalarSolve()) return false;
     const int dim = problem_.dimension();
     const int n = problem_.nodeCount();
     auto flat = [dim](Vector3 v) {
@@ -565,7 +223,7 @@ bool ReducedNewtonSolver::turnedHarmonicStart(std::span<const Vector3> prescribe
             if (!problem_.isUnknown(j) && moves(j)) b[a] += problem_.edgeWeights()[e];
         }
     }
-    if (!harmonicShare(b, share)) return false;
+    if (!preconditioner_.solveScalar(b, share)) return false;
     for (int a = 0; a < m; ++a) {
         const int i = nodes[a];
         const Vector3 offset = flat(x[i]) - centre;
@@ -573,41 +231,6 @@ bool ReducedNewtonSolver::turnedHarmonicStart(std::span<const Vector3> prescribe
         u[i] = flat(turned + centre + share[a] * (moved - centre) - flat(problem_.referencePoints()[i]));
     }
     return true;
-}
-
-bool ReducedNewtonSolver::harmonicShare(std::span<const double> b, std::span<double> s)
-{
-    if (cholesky_) {
-        cholesky_->solve(b, s, 1);
-        return true;
-    }
-    // 3D, K by one multigrid cycle: conjugate gradients on the scalar K, the cycle as the
-    // preconditioner (one component of the three it treats at once). The start needs s only
-    // roughly (Newton corrects it): to a relative residual of harmonicShareTolerance. On the
-    // twisted 10⁶-cell hexahedral cube 1e-2 takes 3 iterations (0.8 s with the turn) and the
-    // solve 3 Newton steps / 23 CG; 1e-1: 1 iteration (0.6 s), 3 / 25; 1e-3: 0.95 s, 3 / 23.
-    constexpr double harmonicShareTolerance = 1e-2;
-    constexpr int maximumIterations = 50;
-    const BlockPattern& pattern = problem_.blockPattern();
-    const int m = problem_.unknownNodeCount();
-    const std::size_t size = static_cast<std::size_t>(m);
-    std::vector<double> in(3 * size, 0.0), out(3 * size);
-    auto cycle = [&](std::span<const double> residual, std::span<double> result) {
-        for (std::size_t a = 0; a < size; ++a) in[3 * a] = residual[a];
-        threeVectorCycle_->apply(in, out);
-        for (std::size_t a = 0; a < size; ++a) result[a] = out[3 * a];
-    };
-    auto multiply = [&](std::span<const double> p, std::span<double> q) {
-#pragma omp parallel for schedule(static) if (worthThreading(pattern.columns.size()))
-        for (int a = 0; a < m; ++a) {
-            double sum = 0.0;
-            for (int position = pattern.rowOffsets[a]; position < pattern.rowOffsets[a + 1]; ++position)
-                sum += laplacian_[position] * p[pattern.columns[position]];
-            q[a] = sum;
-        }
-    };
-    std::array<std::vector<double>, 4> work;
-    return conjugateGradients(multiply, cycle, b, s, harmonicShareTolerance, maximumIterations, work);
 }
 
 namespace {
@@ -706,7 +329,7 @@ bool ReducedNewtonSolver::harmonicChangeFromBasis(std::span<const Vector3> presc
     // and where the kept extensions stay small against the problem (12 of them).
     const int dim = problem_.dimension();
     const std::size_t size = static_cast<std::size_t>(problem_.unknownNodeCount()) * dim;
-    const bool linear = cholesky_ || (threeVectorCycle_ && !vectorSystem_ && dim == 3);
+    const bool linear = preconditioner_.isFixedLinearMap();
     if (!options_.harmonicBasis || !linear || problem_.hasSlidingNodes() || size > maximumHarmonicBasisEntries)
         return false;
     if (prescribedNodes_.empty())
@@ -787,11 +410,11 @@ int ReducedNewtonSolver::subspaceStep(std::vector<Vector3>& u, std::vector<Matri
     const int k = static_cast<int>(basis.size());
     if (k == 0) return 0;
     // A = Wᵀ S W and b = −Wᵀ ∇Ẽ; A by Cholesky (k ≤ a few), given up unless positive definite.
-    prepareHessian(u, rotations);
+    reducedEnergy_.prepareHessian(u, rotations);
     std::vector<double> product(g.size());
     std::vector<double> a(static_cast<std::size_t>(k) * k), b(static_cast<std::size_t>(k));
     for (int j = 0; j < k; ++j) {
-        applyHessian(basis[j], product);
+        reducedEnergy_.applyHessian(basis[j], product);
         for (int i = 0; i < k; ++i) a[static_cast<std::size_t>(i) * k + j] = dotProduct(basis[i], product);
         b[j] = -dotProduct(basis[j], g);
     }
@@ -835,7 +458,7 @@ int ReducedNewtonSolver::subspaceStep(std::vector<Vector3>& u, std::vector<Matri
         return 0;
     }
     moveAlong(u, step, 1.0);
-    const double trialEnergy = fitAndEnergy(trial, trialRotations);
+    const double trialEnergy = reducedEnergy_.fitAndEnergy(trial, trialRotations);
     const bool accepted = slope < 0.0 && std::isfinite(trialEnergy) && trialEnergy <= energy + 1e-4 * slope;
     if (monitor)
         std::printf("  reduced Newton, subspace of %d correction(s): energy %.12e -> %.12e%s\n", k, energy, trialEnergy,
@@ -844,7 +467,7 @@ int ReducedNewtonSolver::subspaceStep(std::vector<Vector3>& u, std::vector<Matri
     u.swap(trial);
     rotations.swap(trialRotations);
     energy = trialEnergy;
-    gradient(u, rotations, g);
+    reducedEnergy_.gradient(u, rotations, g);
     return k;
 }
 
@@ -893,11 +516,12 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
             for (int q = 0; q < dim; ++q) b[static_cast<std::size_t>(a) * dim + q] = sum[q];
         }
         if (problem_.hasSlidingNodes()) {
+            const std::vector<double>& laplacian = preconditioner_.laplacian();
             for (int a = 0; a < m; ++a)
                 for (int position = pattern.rowOffsets[a]; position < pattern.rowOffsets[a + 1]; ++position)
                     for (int q = 0; q < dim; ++q)
                         b[static_cast<std::size_t>(a) * dim + q] -=
-                            laplacian_[position] * slidingOffset[static_cast<std::size_t>(pattern.columns[position]) * dim + q];
+                            laplacian[position] * slidingOffset[static_cast<std::size_t>(pattern.columns[position]) * dim + q];
         }
         return b;
     };
@@ -983,7 +607,7 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
             std::vector<double> change = boundaryRightHandSide(prescribedDisplacement, offset);
             const std::vector<double> previous = boundaryRightHandSide(base, baseOffset);
             for (std::size_t k = 0; k < size; ++k) change[k] -= previous[k];
-            if (!precondition(change, correction)) failure = "DIVERGED_LINEAR_SOLVE (harmonic predictor)";
+            if (!preconditioner_.apply(change, correction)) failure = "DIVERGED_LINEAR_SOLVE (harmonic predictor)";
             else rememberHarmonicChange(std::move(boundaryChange), correction);
         }
         for (int a = 0; a < m; ++a) {
@@ -1005,7 +629,7 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
         }
     } else {
         // Cold start: the harmonic interpolation of the boundary, c n + P K⁻¹ P b.
-        if (!precondition(boundaryRightHandSide(prescribedDisplacement, offset), correction))
+        if (!preconditioner_.apply(boundaryRightHandSide(prescribedDisplacement, offset), correction))
             failure = "DIVERGED_LINEAR_SOLVE (harmonic start)";
         for (std::size_t k = 0; k < size; ++k) start[k] = offset[k] + correction[k];
     }
@@ -1033,7 +657,7 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
     };
     std::vector<double> g(size), trialGradient(size), step(size);
     std::vector<double> negativeGradient(size), estimatedCorrection(size);  // the displacement test
-    double energy = fitAndEnergy(u, rotations);
+    double energy = reducedEnergy_.fitAndEnergy(u, rotations);
     const bool turnedCandidate = !initialGuess || !chained;
     if (turnedCandidate && failure.empty() && options_.turnedStart) {
         // Where the boundary is one rigid body moving in a fixed frame, also the harmonic
@@ -1054,7 +678,7 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
         const std::span<const Vector3> base =
             initialGuess ? std::span<const Vector3>(initialGuess->displacement) : std::span<const Vector3>{};
         if (turnedHarmonicStart(prescribedDisplacement, trial, base)) {
-            const double turnedEnergy = fitAndEnergy(trial, trialRotations);
+            const double turnedEnergy = reducedEnergy_.fitAndEnergy(trial, trialRotations);
             if (turnedEnergy < energy) {
                 u.swap(trial);
                 rotations.swap(trialRotations);
@@ -1071,29 +695,9 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
         setUnknowns(trial, predictorStart);
         predicted = compactUnknowns(trial);
     }
-    gradient(u, rotations, g);
+    reducedEnergy_.gradient(u, rotations, g);
     double gradientNorm = euclideanNorm(g);
     const double tolerance = std::max(absoluteTolerance_, options_.relativeTolerance * gradientNorm);
-    // ε Σ_j w (|u_i| + |u_j| + |d|) per displacement row: RbmEnergy::gradientRoundoffNorm, with
-    // Σ_j w and Σ_j w |d| per node from the constructor; |u| is taken once per node.
-    std::vector<double> magnitudes(static_cast<std::size_t>(m)), nodeNorms(n);
-    const std::vector<double>& weightSums = weightSums_;
-    const std::vector<double>& weightedLengths = weightedLengths_;
-    auto roundoffNorm = [&](const std::vector<Vector3>& displacement) {
-        for (int node = 0; node < n; ++node) nodeNorms[node] = norm(displacement[node]);
-#pragma omp parallel for schedule(static) if (worthThreading(graph.neighbours.size()))
-        for (int a = 0; a < m; ++a) {
-            const int i = nodes[a];
-            double neighbourNorms = 0.0;
-            for (int e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e)
-                neighbourNorms += problem_.edgeWeights()[e] * nodeNorms[graph.neighbours[e]];
-            magnitudes[a] = nodeNorms[i] * weightSums[a] + neighbourNorms + weightedLengths[a];
-        }
-        double sum = 0.0;
-        for (double magnitude : magnitudes) sum += dim * magnitude * magnitude;
-        return std::numeric_limits<double>::epsilon() * std::sqrt(sum);
-    };
-
     constexpr double roundoffFactor = 10.0;  // as CoupledNewtonSolver's convergence test
     // -rbm_reduced_max_it N (Newton steps) and -rbm_reduced_monitor, from PETSc's options.
     PetscInt maximumIterations = options_.maximumIterations;
@@ -1122,7 +726,7 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
     if (boundaryReproduced && !subspaceTried && options_.displacementTolerance > 0.0 && failure.empty() &&
         std::isfinite(energy) && std::isfinite(gradientNorm) && gradientNorm > tolerance) {
         for (std::size_t k = 0; k < size; ++k) negativeGradient[k] = -g[k];
-        if (precondition(negativeGradient, estimatedCorrection)) {
+        if (preconditioner_.apply(negativeGradient, estimatedCorrection)) {
             const double estimatedDisplacement = largestRelativeDisplacement(estimatedCorrection);
             if (monitor)
                 std::printf("  displacement test at the reproduced boundary: K^-1(-grad) moves a node by %.3g of its "
@@ -1145,7 +749,7 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
             reason = gradientNorm <= absoluteTolerance_ ? "CONVERGED_FNORM_ABS" : "CONVERGED_FNORM_RELATIVE";
             break;
         }
-        const double roundingLevel = roundoffFactor * roundoffNorm(u);
+        const double roundingLevel = roundoffFactor * reducedEnergy_.gradientRoundoffNorm(u);
         if (gradientNorm <= roundingLevel) {
             result.converged = true;
             reason = "CONVERGED_FNORM_ABS (rounding level)";
@@ -1190,7 +794,7 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
         const std::vector<double>* firstPreconditioned = nullptr;
         if (options_.displacementTolerance > 0.0) {
             for (std::size_t k = 0; k < size; ++k) negativeGradient[k] = -g[k];
-            if (!precondition(negativeGradient, estimatedCorrection)) {
+            if (!preconditioner_.apply(negativeGradient, estimatedCorrection)) {
                 reason = "DIVERGED_LINEAR_SOLVE (Laplacian)";
                 break;
             }
@@ -1217,7 +821,7 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
             if (estimatedDisplacement * estimatedDisplacement <= 10.0 * options_.displacementTolerance)
                 forcing = std::min(forcing, finalForcingFactor_ * std::max(tolerance, roundingLevel) / gradientNorm);
         }
-        prepareHessian(u, rotations);
+        reducedEnergy_.prepareHessian(u, rotations);
         const int linearIterationsBefore = result.linearIterations;
         bool negativeCurvature = false;
         if (!newtonDirection(g, forcing, firstPreconditioned, step, result.linearIterations, negativeCurvature)) {
@@ -1227,7 +831,7 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
         double slope = dotProduct(g, step);
         if (!(slope < 0.0)) {
             // Not a descent direction (rounding near a negative curvature): a local/global step.
-            if (!precondition(g, step)) {
+            if (!preconditioner_.apply(g, step)) {
                 reason = "DIVERGED_LINEAR_SOLVE (Laplacian)";
                 break;
             }
@@ -1246,16 +850,16 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
             [&](double lambda) {
                 moveAlong(u, step, lambda);
                 gradientKnown = false;
-                return fitAndEnergy(trial, trialRotations);
+                return reducedEnergy_.fitAndEnergy(trial, trialRotations);
             },
             [&] {
-                gradient(trial, trialRotations, trialGradient);
+                reducedEnergy_.gradient(trial, trialRotations, trialGradient);
                 trialGradientNorm = euclideanNorm(trialGradient);
                 gradientKnown = true;
                 return trialGradientNorm < gradientNorm;
             });
         if (search.accepted && !gradientKnown) {
-            gradient(trial, trialRotations, trialGradient);
+            reducedEnergy_.gradient(trial, trialRotations, trialGradient);
             trialGradientNorm = euclideanNorm(trialGradient);
         }
         const double lambda = search.lambda, trialEnergy = search.energy;

@@ -63,10 +63,10 @@
 // energy = E.
 
 #include "PetscSupport.hpp"
-#include "PlanarReducedKernels.hpp"
+#include "LaplacianPreconditioner.hpp"
 #include "RbmEnergy.hpp"
+#include "ReducedEnergy.hpp"
 #include "RbmProblem.hpp"
-#include "SparseCholesky.hpp"
 
 #include <array>
 #include <functional>
@@ -75,9 +75,6 @@
 #include <vector>
 
 namespace rbm::motion {
-
-class ReducedHessian3D;
-class ThreeVectorMultigrid;
 
 struct ReducedNewtonOptions {
     LinearSolverKind linearSolver = LinearSolverKind::automatic;  // of the Laplacian K
@@ -124,22 +121,7 @@ public:
     std::size_t harmonicBasisSize() const { return harmonicBasis_.size(); }
     int correctionsFromHarmonicBasis() const { return correctionsFromHarmonicBasis_; }
 
-    // Ẽ, its projected gradient and S v at node displacements u (one per node), for tests.
-    double reducedEnergy(std::span<const Vector3> displacement);
-    std::vector<double> reducedGradient(std::span<const Vector3> displacement);
-    std::vector<double> reducedHessianTimes(std::span<const Vector3> displacement, std::span<const double> direction);
-
 private:
-    // Fits R*(u) into rotations_ and returns Ẽ(u).
-    double fitAndEnergy(std::span<const Vector3> displacement, std::vector<Matrix3>& rotations) const;
-    // g = P ∇Ẽ (compact, dimension() per unknown node) at u with its fitted rotations.
-    void gradient(std::span<const Vector3> displacement, std::span<const Matrix3> rotations, std::span<double> g) const;
-    // H_δδ⁻¹ per node at (u, R*(u)): the data of applyHessian.
-    void prepareHessian(std::span<const Vector3> displacement, std::span<const Matrix3> rotations);
-    // y = P S P v (compact vectors).
-    void applyHessian(std::span<const double> v, std::span<double> y);
-    // z = P K⁻¹ P r (compact vectors); returns false if an iterative Laplacian solve failed.
-    bool precondition(std::span<const double> r, std::span<double> z);
     // Projected conjugate gradients on S s = −g to ‖S s + g‖ ≤ forcing ‖g‖; see the file comment.
     // firstPreconditioned: K⁻¹(−g) when the caller has it (else computed here).
     bool newtonDirection(std::span<const double> g, double forcing, const std::vector<double>* firstPreconditioned,
@@ -149,13 +131,6 @@ private:
     // since base turned in). False where it does not apply.
     bool turnedHarmonicStart(std::span<const Vector3> prescribedDisplacement, std::vector<Vector3>& u,
                              std::span<const Vector3> base = {});
-    // s = K⁻¹ b for one scalar right-hand side (the turned start's share of the body's motion):
-    // K's factor, or CG preconditioned by the 3D cycle to a loose tolerance. False if CG failed.
-    bool harmonicShare(std::span<const double> b, std::span<double> s);
-    // z = (P (K ⊗ I) P)⁻¹ P r by CG preconditioned by the cycle of the scalar K between
-    // projections, to relativeTolerance (3D with sliding nodes; 2D with K iterative). False if
-    // CG failed.
-    bool projectedCycleSolve(std::span<const double> r, std::span<double> z, double relativeTolerance);
     // trial ← from + λ step (step compact), sliding nodes back onto their planes (solve()).
     using TrialMove = std::function<void(const std::vector<Vector3>& from, std::span<const double> step, double lambda)>;
     // Warm starts: one Galerkin step in the span of recentCorrections_ from u, taken when it
@@ -180,25 +155,13 @@ private:
 
     const RbmProblem& problem_;
     ReducedNewtonOptions options_;
+    ReducedEnergy reducedEnergy_;  // Ẽ, ∇Ẽ, S
+    LaplacianPreconditioner preconditioner_;  // K⁻¹, factorised once
     double absoluteTolerance_ = 0.0;
     // Eisenstat–Walker forcing (solve): η = 0.9 (‖g‖/‖g_prev‖)^forcingExponent_, and the last
     // step to finalForcingFactor_ × the final tolerance (the constructor sets 3D's values).
     double forcingExponent_ = 2.0;
     double finalForcingFactor_ = 0.1;
-    std::vector<double> laplacian_;  // scalar K in blockPattern() order
-    std::unique_ptr<BlockSystemSolver> system_;
-    bool vectorSystem_ = false;  // sliding nodes: K ⊗ I projected, one system
-    bool multipleRightHandSides_ = false;  // K factorised on one rank: MatMatSolve on all components
-    std::unique_ptr<PlanarReducedKernels> planar_;  // the 2D kernels (PlanarReducedKernels.hpp)
-    std::unique_ptr<SparseCholesky> cholesky_;  // K's factor, when one rank factorises the scalar K
-    bool laplacianByCycle_ = false;        // K iterative: K⁻¹ applied as one multigrid cycle (PCApply)
-    // 3D, one rank: that cycle on the three components at once, set up in the constructor
-    // instead of system_ (ThreeVectorMultigrid.hpp).
-    std::unique_ptr<ThreeVectorMultigrid> threeVectorCycle_;
-    Mat factor_ = nullptr;                 // the factor inside system_'s PC (not owned)
-    PetscMat components_, solutions_;      // dense m × dimension right-hand sides and solutions
-    std::unique_ptr<ReducedHessian3D> hessian3D_;      // 3D: S from per-node data
-    std::unique_ptr<InheritedOptions> laplacianOptions_;  // rbm's defaults for K's solver in PETSc (CHOLMOD, BoomerAMG)
     // The last results (node displacements, newest first), for the predictor of warm starts:
     // the secant from the first two, a fit on the boundary over all at a turning point.
     static constexpr std::size_t keptResults = 4;
@@ -226,14 +189,9 @@ private:
     // A change below this share of the displacements themselves is rounding: no correction.
     static constexpr double roundingChangeShare = 1e-12;
     int correctionsFromHarmonicBasis_ = 0;
-    // Work arrays (compact: dimension() entries per unknown node).
-    std::vector<double> componentIn_, componentOut_, projected_;
     std::vector<double> inverseShortestEdge_;  // per unknown node, for displacementTolerance
-    std::vector<double> weightSums_, weightedLengths_;  // per unknown node: Σ_j w and Σ_j w |d| (round-off level)
     std::vector<int> boundaryNeighbours_;      // unknown nodes (compact) next to a prescribed one, then -1
     std::vector<double> cgResidual_, cgPreconditioned_, cgPreviousPreconditioned_, cgDirection_, cgProduct_;
-    std::array<std::vector<double>, 4> cycleWork_;  // projectedCycleSolve's conjugate gradients
-    std::vector<double> planarIn_, planarOut_;       // 2D vectors padded to the cycle's three components
 };
 
 } // namespace rbm::motion
