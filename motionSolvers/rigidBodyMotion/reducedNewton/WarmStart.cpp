@@ -106,12 +106,12 @@ WarmStart::Start WarmStart::start(std::span<const Vector3> prescribedDisplacemen
     bool chained = false;  // warm-started from this solver's own last result, with its history
     // The predictor meets the prescribed boundary to rounding (a turning point of the motion
     // back to a boundary met before, whose kept result it reproduces; a boundary back at rest):
-    // the start is usually the minimum already (see the displacement test before the loop).
+    // the start is usually the minimum already (the driver's displacement test comes first).
     bool boundaryReproduced = false;
     if (initialGuess) {
         // Warm start. When the guess is this solver's own last result and the one before is
         // known, a secant step along the boundary's path first: G = u_n + α (u_n − u_{n−1}),
-        // α fitting the prescribed change best (on a pitching airfoil, the start is then off by
+        // α fitting the prescribed change best (along a smooth motion the start is then off by
         // the second difference of the motion instead of the first). Then the boundary
         // mismatch moved in harmonically: start = G + K⁻¹ (b(new) − b(G)).
         problem_.checkNodeArray(initialGuess->displacement, "initial guess displacement");
@@ -132,9 +132,9 @@ WarmStart::Start WarmStart::start(std::span<const Vector3> prescribedDisplacemen
             // |α| beyond 2: the boundary moves back past the last step (a turning point of the
             // motion between the steps), where the secant extrapolates the wrong way. Then the
             // candidate that fits the prescribed boundary best: the secant, the line through
-            // the last result and each older one, or the fit over all (predictorCandidates);
-            // on the benchmark's pitching airfoil the step after each reversal then starts at
-            // the result of the step mirroring it (the same boundary) instead of at energy 2e-2.
+            // the last result and each older one, or the fit over all (bestPredictorOnBoundary);
+            // in a periodic motion the step after each reversal then starts at the result of the
+            // step mirroring it (the same boundary).
             if (std::abs(secant) > 2.0 && solutionHistory_.size() >= 3)
                 coefficients = bestPredictorOnBoundary(prescribedDisplacement, std::move(coefficients));
             for (std::size_t j = 0; j < coefficients.size(); ++j) {
