@@ -82,6 +82,68 @@ std::vector<double> WarmStart::boundaryRightHandSide(std::span<const Vector3> va
     return b;
 }
 
+void WarmStart::extrapolateAlongHistory(std::span<const Vector3> prescribedDisplacement,
+                                        std::vector<Vector3>& base) const
+{
+    const int n = problem_.nodeCount();
+    const int dim = problem_.dimension();
+    auto flat = [dim](Vector3 v) {
+        if (dim == 2) v.z = 0.0;
+        return v;
+    };
+    const std::vector<Vector3>& last = solutionHistory_[0];
+    const std::vector<Vector3>& previous = solutionHistory_[1];
+    double numerator = 0.0, denominator = 0.0;
+    for (int node = 0; node < n; ++node) {
+        if (problem_.isUnknown(node)) continue;
+        const Vector3 step = flat(last[node] - previous[node]);
+        numerator += dot(flat(prescribedDisplacement[node]) - flat(last[node]), step);
+        denominator += normSquared(step);
+    }
+    const double secant = denominator > 0.0 ? numerator / denominator : 0.0;
+    std::vector<double> coefficients{std::clamp(secant, -2.0, 2.0)};
+    // |α| beyond 2: the boundary moves back past the last step (a turning point of the
+    // motion between the steps), where the secant extrapolates the wrong way. Then the
+    // candidate that fits the prescribed boundary best: the secant, the line through
+    // the last result and each older one, or the fit over all (bestPredictorOnBoundary);
+    // in a periodic motion the step after each reversal then starts at the result of the
+    // step mirroring it (the same boundary).
+    if (std::abs(secant) > 2.0 && solutionHistory_.size() >= 3)
+        coefficients = bestPredictorOnBoundary(prescribedDisplacement, std::move(coefficients));
+    for (std::size_t j = 0; j < coefficients.size(); ++j) {
+        if (coefficients[j] == 0.0) continue;
+        const std::vector<Vector3>& older = solutionHistory_[j + 1];
+        for (int node = 0; node < n; ++node) base[node] += coefficients[j] * (last[node] - older[node]);
+    }
+}
+
+void WarmStart::keepTurnedStartIfLower(std::span<const Vector3> prescribedDisplacement, const RbmState* initialGuess,
+                                       ReducedIterate& point)
+{
+    std::vector<Vector3>& u = point.displacement;
+    // Where the boundary is one rigid body moving in a fixed frame, also the harmonic
+    // interpolation of its TURN: s = K⁻¹ b(1 on the body, 0 on the fixed nodes), and every
+    // node moved by the body's motion scaled by s — turned by s θ about the body's centre
+    // and shifted by s t — instead of interpolating the displacement vectors, which
+    // shortens the cells between (a turned neighbourhood's chord, not its arc). The start
+    // of lower energy is kept (with its fitted rotations): near a large turn the turned one
+    // starts far closer to the minimum and saves a Newton step.
+    // A warm start without the history for the secant (the first after a restart; a
+    // series' second step continues a chain from the reference mesh, see record()): the
+    // same from the guess, the body's motion since the guess turned in.
+    trial_ = u;
+    const std::span<const Vector3> base =
+        initialGuess ? std::span<const Vector3>(initialGuess->displacement) : std::span<const Vector3>{};
+    if (turnedHarmonicStart(problem_, preconditioner_, prescribedDisplacement, trial_, base)) {
+        const double turnedEnergy = energy_.fitAndEnergy(trial_, trialRotations_);
+        if (turnedEnergy < point.energy) {
+            u.swap(trial_);
+            point.rotations.swap(trialRotations_);
+            point.energy = turnedEnergy;
+        }
+    }
+}
+
 WarmStart::Start WarmStart::start(std::span<const Vector3> prescribedDisplacement, const RbmState* initialGuess,
                                   const CompactUnknowns& unknowns)
 {
@@ -117,32 +179,7 @@ WarmStart::Start WarmStart::start(std::span<const Vector3> prescribedDisplacemen
         problem_.checkNodeArray(initialGuess->displacement, "initial guess displacement");
         std::vector<Vector3> base(initialGuess->displacement.begin(), initialGuess->displacement.end());
         chained = solutionHistory_.size() >= 2 && solutionHistory_[0] == base;
-        if (chained) {
-            const std::vector<Vector3>& last = solutionHistory_[0];
-            const std::vector<Vector3>& previous = solutionHistory_[1];
-            double numerator = 0.0, denominator = 0.0;
-            for (int node = 0; node < n; ++node) {
-                if (problem_.isUnknown(node)) continue;
-                const Vector3 step = flat(last[node] - previous[node]);
-                numerator += dot(flat(prescribedDisplacement[node]) - flat(last[node]), step);
-                denominator += normSquared(step);
-            }
-            const double secant = denominator > 0.0 ? numerator / denominator : 0.0;
-            std::vector<double> coefficients{std::clamp(secant, -2.0, 2.0)};
-            // |α| beyond 2: the boundary moves back past the last step (a turning point of the
-            // motion between the steps), where the secant extrapolates the wrong way. Then the
-            // candidate that fits the prescribed boundary best: the secant, the line through
-            // the last result and each older one, or the fit over all (bestPredictorOnBoundary);
-            // in a periodic motion the step after each reversal then starts at the result of the
-            // step mirroring it (the same boundary).
-            if (std::abs(secant) > 2.0 && solutionHistory_.size() >= 3)
-                coefficients = bestPredictorOnBoundary(prescribedDisplacement, std::move(coefficients));
-            for (std::size_t j = 0; j < coefficients.size(); ++j) {
-                if (coefficients[j] == 0.0) continue;
-                const std::vector<Vector3>& older = solutionHistory_[j + 1];
-                for (int node = 0; node < n; ++node) base[node] += coefficients[j] * (last[node] - older[node]);
-            }
-        }
+        if (chained) extrapolateAlongHistory(prescribedDisplacement, base);
         // On the prescribed nodes: the predictor's miss, the sizes of the new boundary, the
         // predictor's and the guess's (the two tests to rounding below).
         double missSquared = 0.0, restSquared = 0.0, baseSquared = 0.0, lastSquared = 0.0;
@@ -159,7 +196,7 @@ WarmStart::Start WarmStart::start(std::span<const Vector3> prescribedDisplacemen
         problem_.slidingOffset(base, baseOffset, dim);
         // K⁻¹ of the change is linear in the boundary's change (without sliding nodes): taken
         // from the extensions of the changes met before where the new one is their combination
-        // (harmonicChangeFromBasis), solved otherwise.
+        // (HarmonicChangeBasis), solved otherwise.
         std::vector<double> boundaryChange;
         if (!harmonicBasis_.correctionFromBasis(prescribedDisplacement, base, boundaryChange, correction)) {
             std::vector<double> change = boundaryRightHandSide(prescribedDisplacement, offset);
@@ -195,30 +232,8 @@ WarmStart::Start WarmStart::start(std::span<const Vector3> prescribedDisplacemen
     std::vector<Matrix3>& rotations = result.point.rotations;
     double& energy = result.point.energy;
     energy = energy_.fitAndEnergy(u, rotations);
-    const bool turnedCandidate = !initialGuess || !chained;
-    if (turnedCandidate && failure.empty() && options_.turnedStart) {
-        // Where the boundary is one rigid body moving in a fixed frame, also the harmonic
-        // interpolation of its TURN: s = K⁻¹ b(1 on the body, 0 on the fixed nodes), and every
-        // node moved by the body's motion scaled by s — turned by s θ about the body's centre
-        // and shifted by s t — instead of interpolating the displacement vectors, which
-        // shortens the cells between (a turned neighbourhood's chord, not its arc). The start
-        // of lower energy is kept (with its fitted rotations): near a large turn the turned one
-        // starts far closer to the minimum and saves a Newton step.
-        // A warm start without the history for the secant (the first after a restart; a
-        // series' second step continues a chain from the reference mesh, see record()): the
-        // same from the guess, the body's motion since the guess turned in.
-        trial_ = u;
-        const std::span<const Vector3> base =
-            initialGuess ? std::span<const Vector3>(initialGuess->displacement) : std::span<const Vector3>{};
-        if (turnedHarmonicStart(problem_, preconditioner_, prescribedDisplacement, trial_, base)) {
-            const double turnedEnergy = energy_.fitAndEnergy(trial_, trialRotations_);
-            if (turnedEnergy < energy) {
-                u.swap(trial_);
-                rotations.swap(trialRotations_);
-                energy = turnedEnergy;
-            }
-        }
-    }
+    if ((!initialGuess || !chained) && failure.empty() && options_.turnedStart)
+        keepTurnedStartIfLower(prescribedDisplacement, initialGuess, result.point);
     // The start actually taken (after the turned one's choice), or the predictor's where the
     // reference mesh was taken instead: the step's Newton correction is the result minus it
     // (the subspace step of later steps).

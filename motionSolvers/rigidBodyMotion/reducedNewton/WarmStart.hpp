@@ -83,6 +83,14 @@ public:
 private:
     // b(values) = Σ_{j prescribed} w ū_j − (K c)_k per unknown node k (compact).
     std::vector<double> boundaryRightHandSide(std::span<const Vector3> values, std::span<const double> slidingOffset);
+    // Along a chain: base (the last result) ← the secant predictor, or past a turning point the
+    // combination of the kept results that fits the new boundary best.
+    void extrapolateAlongHistory(std::span<const Vector3> prescribedDisplacement, std::vector<Vector3>& base) const;
+    // Where the boundary is one rigid body in a fixed frame: the turned start (TurnedStart.hpp)
+    // from the reference mesh or the guess replaces point's displacements, rotations and energy
+    // when its energy is lower.
+    void keepTurnedStartIfLower(std::span<const Vector3> prescribedDisplacement, const RbmState* initialGuess,
+                                ReducedIterate& point);
     // At a turning point of the motion: the predictor G = u_0 + Σ_j c_j (u_0 − u_j) over
     // solutionHistory_ whose c fits the prescribed change on the prescribed nodes best (the
     // candidates in the .cpp), `secant` (c_1 alone) among them.
