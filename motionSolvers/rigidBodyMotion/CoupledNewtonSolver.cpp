@@ -1,5 +1,6 @@
 #include "CoupledNewtonSolver.hpp"
 
+#include "BacktrackingLineSearch.hpp"
 #include "BlockRowLayout.hpp"
 
 #include <limits>
@@ -94,10 +95,9 @@ PetscErrorCode formHessian(SNES, Vec x, Mat, Mat preconditioner, void* data)
     }
 }
 
-// Armijo backtracking on the energy along the Newton step: x_new = x − λ y, accepted when
-// E(x_new) ≤ E(x) − 1e-4 λ F·y. A step that is not a descent direction (exact Hessian
-// indefinite) is recomputed with the Gauss–Newton matrix. Near the minimum E can no
-// longer resolve the decrease (rounding); there a step that reduces ‖F‖ is accepted.
+// Armijo backtracking on the energy along the Newton step x_new = x − λ y
+// (BacktrackingLineSearch.hpp; near the minimum a step that reduces ‖F‖). A step that is not a
+// descent direction (exact Hessian indefinite) is recomputed with the Gauss–Newton matrix.
 PetscErrorCode energyLineSearch(SNESLineSearch lineSearch, void* data)
 {
     try {
@@ -129,31 +129,19 @@ PetscErrorCode energyLineSearch(SNESLineSearch lineSearch, void* data)
         }
 
         const double energy0 = energyAt(context, x);
-        const double roundoff = 1e-13 * std::abs(energy0) + 1e-300;
-        double lambda = 1.0;
-        bool accepted = false;
-        for (int attempt = 0; attempt < 40 && !accepted; ++attempt) {
-            RBM_CHECK_PETSC(VecWAXPY(w, -lambda, y, x));
-            const double energyW = energyAt(context, w);
-            if (std::isfinite(energyW) && energyW <= energy0 + 1e-4 * lambda * slope) {
-                accepted = true;
-            } else if (std::isfinite(energyW) && energyW <= energy0 + roundoff) {
+        const LineSearchResult search = backtrackingLineSearch(
+            energy0, slope,
+            [&](double lambda) {
+                RBM_CHECK_PETSC(VecWAXPY(w, -lambda, y, x));
+                return energyAt(context, w);
+            },
+            [&] {
                 double gNorm = 0.0;
                 RBM_CHECK_PETSC(SNESComputeFunction(snes, w, g));
                 RBM_CHECK_PETSC(VecNorm(g, NORM_2, &gNorm));
-                accepted = gNorm < fNorm;
-            }
-            if (!accepted) {
-                // Minimiser of the quadratic through E(0), E'(0) and E(λ), kept in [0.1 λ, 0.5 λ].
-                double next = 0.5 * lambda;
-                if (std::isfinite(energyW)) {
-                    const double curvature = energyW - energy0 - slope * lambda;
-                    if (curvature > 0.0) next = -slope * lambda * lambda / (2.0 * curvature);
-                }
-                lambda = std::clamp(next, 0.1 * lambda, 0.5 * lambda);
-            }
-        }
-        if (!accepted) {
+                return gNorm < fNorm;
+            });
+        if (!search.accepted) {
             RBM_CHECK_PETSC(SNESLineSearchSetReason(lineSearch, SNES_LINESEARCH_FAILED_REDUCT));
             return 0;
         }
@@ -162,7 +150,7 @@ PetscErrorCode energyLineSearch(SNESLineSearch lineSearch, void* data)
         double xNorm = 0.0;
         RBM_CHECK_PETSC(VecNorm(x, NORM_2, &xNorm));
         RBM_CHECK_PETSC(VecNorm(f, NORM_2, &fNorm));
-        RBM_CHECK_PETSC(SNESLineSearchSetNorms(lineSearch, xNorm, fNorm, lambda * yNorm));
+        RBM_CHECK_PETSC(SNESLineSearchSetNorms(lineSearch, xNorm, fNorm, search.lambda * yNorm));
         return 0;
     } catch (const std::exception& error) {
         return reportException("energyLineSearch", error);

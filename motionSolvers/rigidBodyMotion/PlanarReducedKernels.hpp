@@ -65,7 +65,7 @@ private:
     // back-substitution); S is only Newton's model, so the step is off by ~1e-7 relatively,
     // while the gradient (double) decides convergence. w q of a→j and w q_back of j→a are the
     // same product rounded the same way, so S stays symmetric to round-off
-    // (ReducedNewton.ReducedHessianIsSymmetric).
+    // (ReducedEnergy.HessianIsSymmetric).
     std::vector<float> weightedRotated_, weightedBackRotated_, laplacianWeight_;
     std::vector<int> compact_;             // per edge: the neighbour's unknown index or the zero slot
     std::vector<double> inverseCurvature_; // per unknown node H_δδ⁻¹
