@@ -11,13 +11,21 @@ bool HarmonicChangeBasis::correctionFromBasis(std::span<const Vector3> prescribe
 {
     boundaryChange.clear();
     // Only where K⁻¹ is one fixed linear map (a factorisation, or the 3D cycle without sliding
-    // nodes, not an inner iteration) and the boundary enters b linearly (no sliding offsets),
+    // nodes, not an inner iteration) and the boundary enters b linearly (no sliding offsets:
+    // sliding planes through the nodes' reference positions, as both front doors give them),
     // and where the kept extensions stay small against the problem (12 of them).
     const int dim = problem_.dimension();
     const std::size_t size = static_cast<std::size_t>(problem_.unknownNodeCount()) * dim;
     const bool linear = preconditioner_.isFixedLinearMap();
-    if (!enabled_ || !linear || problem_.hasSlidingNodes() || size > maximumHarmonicBasisEntries)
-        return false;
+    if (!enabled_ || !linear || size > maximumHarmonicBasisEntries) return false;
+    if (problem_.hasSlidingNodes()) {
+        std::vector<double> offset(size);
+        for (const std::span<const Vector3> values : {prescribed, base}) {
+            problem_.slidingOffset(values, offset, dim);
+            for (double value : offset)
+                if (value != 0.0) return false;
+        }
+    }
     if (prescribedNodes_.empty())
         for (int node = 0; node < problem_.nodeCount(); ++node)
             if (!problem_.isUnknown(node)) prescribedNodes_.push_back(node);

@@ -50,6 +50,13 @@ LaplacianPreconditioner::LaplacianPreconditioner(const RbmProblem& problem, Line
                                                      laplacian_, FactorPrecision::single);
         return;
     }
+    // Sliding nodes, one rank, factorised: P (K ⊗ I) P in the sliding frames, factorised once
+    // (ProjectedLaplacianFactor.hpp) in double precision: its solve is the start's exact
+    // harmonic extension, as the multifrontal solve of the vector system it replaces was.
+    if (vectorSystem_ && ranks == 1 && factorised && !userChoseSolver && SparseCholesky::available()) {
+        projectedCholesky_ = std::make_unique<ProjectedLaplacianFactor>(problem_, laplacian_, FactorPrecision::double_);
+        return;
+    }
 #if defined(PETSC_HAVE_SUITESPARSE)
     // One rank, scalar K: CHOLMOD's supernodal Cholesky, whose back-substitution does far fewer
     // flops than MUMPS's on these graph Laplacians (the back-substitutions are most of this
@@ -129,6 +136,10 @@ bool LaplacianPreconditioner::apply(std::span<const double> r, std::span<double>
     const int dim = problem_.dimension();
     if (cholesky_) {
         cholesky_->solve(r, z, dim);  // compact vectors are interleaved by node already
+        return true;
+    }
+    if (projectedCholesky_) {
+        projectedCholesky_->solve(r, z);
         return true;
     }
     if (!vectorSystem_ && multipleRightHandSides_) {

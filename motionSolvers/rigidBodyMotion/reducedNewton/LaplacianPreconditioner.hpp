@@ -9,7 +9,8 @@
 // How K⁻¹ is applied:
 //   - one rank, K factorised: rbm's supernodal Cholesky (SparseCholesky.hpp), or PETSc's
 //     factorisation with every component in one back-substitution (MatMatSolve) when the
-//     user chose PETSc's solver through the options;
+//     user chose PETSc's solver through the options; with sliding nodes, the projected
+//     K ⊗ I in the sliding frames, factorised once the same way (ProjectedLaplacianFactor.hpp);
 //   - 3D above directSolverRowLimit unknown nodes (one rank): ONE multigrid V-cycle applied to
 //     the three components at once (ThreeVectorMultigrid.hpp, rbm's smoothed-aggregation
 //     hierarchy of K); with sliding nodes, CG on the projected K ⊗ I preconditioned by that
@@ -25,6 +26,7 @@
 // Vectors are compact: dimension() entries per unknown node.
 
 #include "PetscSupport.hpp"
+#include "ProjectedLaplacianFactor.hpp"
 #include "RbmProblem.hpp"
 
 #include <array>
@@ -57,7 +59,7 @@ public:
     // an inner iteration whose result depends on its tolerance).
     bool isFixedLinearMap() const
     {
-        return cholesky_ || (threeVectorCycle_ && !vectorSystem_ && problem_.dimension() == 3);
+        return cholesky_ || projectedCholesky_ || (threeVectorCycle_ && !vectorSystem_ && problem_.dimension() == 3);
     }
     // K's entries in blockPattern() order.
     const std::vector<double>& laplacian() const { return laplacian_; }
@@ -74,6 +76,7 @@ private:
     bool vectorSystem_ = false;            // sliding nodes: K ⊗ I projected, one system
     bool multipleRightHandSides_ = false;  // K factorised by PETSc on one rank: MatMatSolve on all components
     std::unique_ptr<SparseCholesky> cholesky_;  // K's factor, when one rank factorises the scalar K
+    std::unique_ptr<ProjectedLaplacianFactor> projectedCholesky_;  // ... or, with sliding nodes, P (K ⊗ I) P
     bool laplacianByCycle_ = false;        // K iterative: K⁻¹ applied as one multigrid cycle (PCApply)
     // 3D, one rank: that cycle on the three components at once, set up in the constructor
     // instead of system_ (ThreeVectorMultigrid.hpp).
