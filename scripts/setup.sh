@@ -9,7 +9,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(build-essential cmake pkg-config petsc-dev libsuitesparse-dev libvtk9-dev libgtest-dev zlib1g-dev libdeflate-dev openmpi-bin libopenblas0
-          openfoam libopenfoam xz-utils)
+          openfoam libopenfoam openfoam-examples xz-utils)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
