@@ -887,7 +887,8 @@ int MoveMeshRun::run()
                     err_ << "rbmMoveMesh: time " << name << ": " << motion::invalidStepCause(verdict, record)
                          << ".\nNothing was written for time " << name << (finite ? "" : " (not even with -writeInvalid)")
                          << "; earlier times stay as written. "
-                         << motion::invalidStepAdvice(verdict, record, "-writeInvalid writes the step anyway to look at it")
+                         << motion::invalidStepAdvice(verdict, record, "-writeInvalid writes the step anyway to look at it",
+                                                   solver_->invertedStepAdvice())
                          << "\n";
                     break;
                 }

@@ -90,6 +90,10 @@ public:
     // Computes the displacement of the free and sliding points.
     virtual MotionSolveReport solve() = 0;
 
+    // After a solve that left inverted cells: which of this solver's options can help for
+    // this motion, or why none will (one or more sentences). Empty: no advice of its own.
+    virtual std::string invertedStepAdvice() const { return {}; }
+
     // points0 + pointDisplacement.
     std::vector<Vector3> curPoints() const;
 

@@ -127,11 +127,14 @@ std::string invalidStepCause(const StepVerdict& verdict, const io::StepLogRecord
     return "the motion solver did not converge (" + record.reason + ")";
 }
 
-std::string invalidStepAdvice(const StepVerdict& verdict, const io::StepLogRecord& record, std::string_view goOnAnyway)
+std::string invalidStepAdvice(const StepVerdict& verdict, const io::StepLogRecord& record, std::string_view goOnAnyway,
+                              std::string_view solverAdvice)
 {
     if (!verdict.finite)
         return "A boundary displacement far larger than the mesh, or a linear solver that diverged, does this; "
                "-rbm_newton_snes_monitor, -rbm_linearized_ksp_monitor or -ksp_monitor show the iterations.";
+    if (record.invertedCells > 0 && !solverAdvice.empty())
+        return std::string(solverAdvice) + " " + std::string(goOnAnyway) + ".";
     if (record.invertedCells > 0)
         return "More sub-steps (subSteps in rigidBodyMotionSolverCoeffs) or the nonlinear formulation may help; " +
                std::string(goOnAnyway) + ".";

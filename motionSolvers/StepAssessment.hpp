@@ -86,6 +86,8 @@ private:
 std::string invalidStepCause(const StepVerdict& verdict, const io::StepLogRecord& record);
 // What may help, ending with how to go on anyway (`goOnAnyway`, e.g. "-writeInvalid writes
 // the step anyway to look at it"); a non-finite step has no way to go on.
-std::string invalidStepAdvice(const StepVerdict& verdict, const io::StepLogRecord& record, std::string_view goOnAnyway);
+// `solverAdvice` (MotionSolver::invertedStepAdvice) replaces the general advice for inverted cells.
+std::string invalidStepAdvice(const StepVerdict& verdict, const io::StepLogRecord& record, std::string_view goOnAnyway,
+                              std::string_view solverAdvice = {});
 
 } // namespace rbm::motion

@@ -537,6 +537,57 @@ TEST(RigidBodyMotionSolverBoundaries, FreeGroupWithoutAPrescribedNeighbourIsAnIn
     EXPECT_NE(message.find("needs a prescribed patch"), std::string::npos) << message;
 }
 
+TEST(RigidBodyMotionSolverAdvice, AnInvertedStepNamesTheRobustChoicesTheOptionsLeaveOut)
+{
+    // The thesis' uniform weights, linearized, one sub-step, no stiffening, no untangling: a
+    // wall turned 60° inverts cells, and each of those choices is named, nothing else.
+    const PolyMesh mesh = makeExtruded2D(8, 8, {-4, -4, 0}, {4, 4, 1});
+    const io::Dictionary field = parse(R"(
+        boundaryField
+        {
+            left { type solidBodyMotionDisplacement; solidBodyMotionFunction rotatingMotion;
+                   rotatingMotionCoeffs { origin (0 0 0); axis (0 0 1); omega 1.0471975511965976; } }
+            ".*" { type fixedValue; value uniform (0 0 0); }
+            frontAndBack { type empty; }
+        })", "0/pointDisplacement");
+    auto solver = makeSolver(mesh, "formulation linearized; weighting uniform; subSteps 1; stiffening none; untangle off;",
+                             &field);
+    solver->updateBoundaryConditions(1.0);
+    ASSERT_GT(solver->solve().invertedCellCount, 0);
+    const std::string advice = solver->invertedStepAdvice();
+    for (const char* choice : {"formulation nonlinear", "weighting inverseDistanceSquared", "subSteps auto",
+                               "stiffening auto", "untangle on"})
+        EXPECT_NE(advice.find(choice), std::string::npos) << choice << ": " << advice;
+    EXPECT_EQ(advice.find("None of"), std::string::npos) << advice;
+    // With the robust choices in effect it advises none of them again.
+    auto defaults = makeSolver(mesh, "formulation nonlinear;", &field);
+    EXPECT_EQ(defaults->invertedStepAdvice().find("formulation nonlinear"), std::string::npos);
+}
+
+TEST(RigidBodyMotionSolverAdvice, WithTheDefaultsASqueezeIsNamedAsSuch)
+{
+    // A wall pushed along a channel whose sides hold, to 0.1 of its length from the fixed end:
+    // with the defaults in effect the advice (asked here of a valid step, as the front doors
+    // would after an inverted one) names the squeeze, the cells at a tenth of their size, and
+    // no option.
+    const PolyMesh mesh = makeExtruded2D(10, 4, {0, 0, 0}, {10, 4, 1});
+    const io::Dictionary field = parse(R"(
+        boundaryField
+        {
+            left { type fixedValue; value uniform (9 0 0); }
+            right { type fixedValue; value uniform (0 0 0); }
+            bottom { type fixedValue; value uniform (0 0 0); }
+            top { type fixedValue; value uniform (0 0 0); }
+            frontAndBack { type empty; }
+        })", "0/pointDisplacement");
+    auto solver = makeSolver(mesh, "", &field);
+    ASSERT_TRUE(solver->solve().converged);
+    const std::string advice = solver->invertedStepAdvice();
+    EXPECT_NE(advice.find("None of rbm's options will help: the motion squeezes cells to 0."), std::string::npos) << advice;
+    EXPECT_EQ(advice.find("formulation"), std::string::npos) << advice;
+    EXPECT_NE(advice.find("Laplacian motion solver"), std::string::npos) << advice;
+}
+
 TEST(RigidBodyMotionSolverBoundaries, DictionaryConditionsAreEvaluatedAtTheGivenTime)
 {
     // Every patch translated by uniformFixedValue (t, 2t, 0): the whole box translates.

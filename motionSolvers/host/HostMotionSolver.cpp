@@ -172,7 +172,8 @@ HostStepReport HostMotionSolver::solve(int step, double time, const std::string&
     if (!verdict.valid)
         report.problem = motion::invalidStepCause(verdict, record) + ". " +
                          motion::invalidStepAdvice(verdict, record,
-                                                   "writeInvalid yes; in rigidBodyMotionSolverCoeffs goes on anyway");
+                                                   "writeInvalid yes; in rigidBodyMotionSolverCoeffs goes on anyway",
+                                                   solver.invertedStepAdvice());
     return report;
 }
 

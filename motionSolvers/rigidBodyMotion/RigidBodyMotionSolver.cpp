@@ -22,8 +22,10 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <iomanip>
 #include <limits>
 #include <numbers>
+#include <sstream>
 #include <stdexcept>
 
 namespace rbm::motion {
@@ -130,6 +132,15 @@ public:
     bool allRigid() const
     {
         return std::all_of(motions_.begin(), motions_.end(), [](const GroupMotion& m) { return m.rigid; });
+    }
+
+    // The largest rotation angle (radians) of the groups that move rigidly.
+    double largestRigidAngle() const
+    {
+        double largest = 0.0;
+        for (const GroupMotion& motion : motions_)
+            if (motion.rigid) largest = std::max(largest, norm(motion.rotation));
+        return largest;
     }
 
 private:
@@ -333,6 +344,10 @@ struct RigidBodyMotionSolver::Impl {
     void untangleState(MotionSolveReport& report);
     std::unique_ptr<SimplexDecomposition> simplices;  // built at the first untangling
     void writeBack();
+
+    // How far the motion squeezes the cells: the ratio of a valid cell's size (2D: area, 3D:
+    // volume) in the current state to its size in the reference mesh, at the 1st percentile.
+    double smallestCellSizeRatio() const;
 
     void solveOnInitialMesh(std::span<const Vector3> target, MotionSolveReport& report);
     void solveInIncrements(std::span<const Vector3> target, MotionSolveReport& report);
@@ -942,6 +957,85 @@ const std::vector<double>& RigidBodyMotionSolver::stiffeningFactors() const
 }
 const std::vector<Label>& RigidBodyMotionSolver::stiffeningPatches() const { return impl_->stiffenedPatches; }
 Label RigidBodyMotionSolver::initialInvertedCellCount() const { return impl_->initialInverted; }
+
+double RigidBodyMotionSolver::Impl::smallestCellSizeRatio() const
+{
+    // Per valid cell, its size now over its size in the reference mesh; the percentile, not
+    // the minimum, so that the few cells the failed step itself degenerated next to the
+    // inverted ones do not stand for the motion.
+    std::vector<double> ratios;
+    if (twoD) {
+        const PlanarMesh& planar = twoD->planar;
+        std::vector<Vector3> moved(referencePoints.size());
+        for (std::size_t node = 0; node < moved.size(); ++node)
+            moved[node] = referencePoints[node] + (hasState ? state.displacement[node] : Vector3{});
+        for (Label c = 0; c < planar.cellCount(); ++c) {
+            const double before = planar.signedArea(c), after = planar.signedArea(c, moved);
+            if (before > 0.0 && after > 0.0) ratios.push_back(after / before);
+        }
+    } else {
+        const PolyMesh& mesh = owner.mesh();
+        const MeshGeometry before = computeMeshGeometry(mesh, owner.points0());
+        const MeshGeometry after = computeMeshGeometry(mesh, owner.curPoints());
+        for (std::size_t c = 0; c < before.cellVolumes.size(); ++c)
+            if (before.cellVolumes[c] > 0.0 && after.cellVolumes[c] > 0.0)
+                ratios.push_back(after.cellVolumes[c] / before.cellVolumes[c]);
+    }
+    if (ratios.empty()) return 0.0;
+    const auto percentile = ratios.begin() + static_cast<std::ptrdiff_t>(ratios.size() / 100);
+    std::nth_element(ratios.begin(), percentile, ratios.end());
+    return *percentile;
+}
+
+std::string RigidBodyMotionSolver::invertedStepAdvice() const
+{
+    const Impl& impl = *impl_;
+    const RigidBodyMotionOptions& o = impl.options;
+    // The robust choices the user's options leave out, each of which can change the result.
+    std::vector<std::string> changes;
+    if (o.formulation == RbmFormulation::linearized)
+        changes.push_back("formulation nonlinear (exact rotations: the linearized form shears cells under large turns)");
+    if (o.weighting != EdgeWeighting::inverseDistanceSquared)
+        changes.push_back("weighting inverseDistanceSquared (keeps small and stretched cells rigid)");
+    if (!o.automaticSubSteps())
+        changes.push_back("subSteps auto (halves a sub-step that inverts cells, up to maxSubStepSplits times)");
+    else if (o.maxSubStepSplits < RigidBodyMotionOptions{}.maxSubStepSplits)
+        changes.push_back("a larger maxSubStepSplits");
+    if (!o.stiffening.enabled()) changes.push_back("stiffening auto (the cells next to a moving body turn with it)");
+    if (!o.untangle) changes.push_back("untangle on (moves the points around inverted cells until they are valid)");
+    std::ostringstream text;
+    if (!changes.empty()) {
+        text << "In rigidBodyMotionSolverCoeffs, what can help this motion: ";
+        for (std::size_t k = 0; k < changes.size(); ++k) text << (k ? "; " : "") << changes[k];
+        text << ".";
+        return text.str();
+    }
+    // The robust choices are in effect: say what the motion asks of the mesh.
+    const std::vector<Vector3> target = impl.prescribedTarget();
+    const std::vector<Vector3> zero(target.size());
+    const double angle = BoundaryPath(impl.dimension, impl.referencePoints, impl.groupOffsets, impl.groupNodes, zero,
+                                      target)
+                             .largestRigidAngle() *
+                         180.0 / std::numbers::pi;
+    const double squeeze = impl.smallestCellSizeRatio();
+    text << std::setprecision(2);
+    if (squeeze < 0.35) {
+        text << "None of rbm's options will help: the motion squeezes cells to " << squeeze
+             << " of their size and less (a body closing a gap; 1 % of the cells), and rbm moves every node's neighbourhood as close to a "
+                "rigid body as it can, which does not shrink: the cells nearest the gap fold. What can: more cells "
+                "in the gap, a smaller motion between remeshings, or a Laplacian motion solver for this case.";
+    } else if (angle > 1.0) {
+        text << "None of rbm's options will help: the boundary turns by " << angle
+             << " degrees, more than the cells between it and the fixed boundary can take with the defaults in effect "
+                "(nonlinear, 1/|d|^2 weights, automatic sub-steps, stiffening, untangling). What can: more cells "
+                "around the moving body, or a smaller rotation between remeshings.";
+    } else {
+        text << "None of rbm's options will help: the defaults in effect (nonlinear, 1/|d|^2 weights, automatic "
+                "sub-steps, stiffening, untangling) are its most robust choices. A prescribed motion that "
+                "deforms a patch or crosses another boundary does this; the step's mesh shows where.";
+    }
+    return text.str();
+}
 
 MotionSolveReport RigidBodyMotionSolver::solve()
 {

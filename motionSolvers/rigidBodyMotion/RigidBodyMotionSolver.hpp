@@ -62,6 +62,10 @@ public:
 
     std::string_view typeName() const override { return typeNameString; }
     MotionSolveReport solve() override;
+    // The options in effect that a robust choice would change (formulation, weighting,
+    // sub-steps, stiffening, untangling), or, with the robust choices in effect, what the
+    // motion does that none of them can take (a squeeze, a rotation) and what can.
+    std::string invertedStepAdvice() const override;
 
     const RigidBodyMotionOptions& options() const;
     // 2 for pseudo-3D meshes (solved on the front plane), 3 otherwise.
