@@ -5,6 +5,7 @@
 #include "CompressedFile.hpp"
 #include "FoamDictionaryWriter.hpp"
 #include "InputError.hpp"
+#include "LoadAdaptiveThreads.hpp"
 #include "MemoryEstimate.hpp"
 #include "MeshTopology.hpp"
 #include "MotionSolverRegistry.hpp"
@@ -810,6 +811,7 @@ int MoveMeshRun::run()
     int exitStatus = exitSuccess;
     int stepsRun = 0;
     for (int step = 1; step <= stepCount_; ++step) {
+        threads_.update();   // the cores others left during the last step (or the set-up)
         const Clock::time_point stepStart = Clock::now();
         const double time = stepTime(step);
         std::string name;

@@ -39,12 +39,14 @@
 // points0 + pointDisplacement.
 
 #include "ControlDict.hpp"
+#include "LoadAdaptiveThreads.hpp"
 #include "MotionSolver.hpp"
 #include "PointVectorField.hpp"
 #include "PolyMesh.hpp"
 #include "QualityReport.hpp"
 #include "RunLog.hpp"
 #include "StepAssessment.hpp"
+#include "ThreadCount.hpp"
 #include "VtkWriter.hpp"
 
 #include <cstdint>
@@ -138,6 +140,10 @@ public:
 
 private:
     struct CellFieldWorkspace;
+
+    // rbm's threads on a shared machine: the cores other processes leave, measured from the
+    // run's start on (src/LoadAdaptiveThreads.hpp).
+    LoadAdaptiveThreads threads_{threadCount()};
 
     void printHeader() const;
     bool isWriteTime(int step, double time);

@@ -11,10 +11,9 @@
 //   otherwise, one MPI rank   → the number of cores this process may run on (its affinity
 //                               mask: under a batch system, the cores it was given);
 //   otherwise (several ranks) → 1 per rank, so that N ranks on N cores do not oversubscribe.
-// On a machine shared with other jobs, OMP_NUM_THREADS=1 (or OMP_DYNAMIC=true, OpenMP's own
-// load adjustment) avoids threads that wait for a core at every barrier. A default that
-// adapts to the load was tried and dropped: on a dedicated machine a long run counts its own
-// load and falls back to one thread. rbmMoveMesh applies the policy with its MPI rank count.
+// On a machine shared with other jobs, threads that wait for a core at every barrier cost
+// more than they save: rbmMoveMesh applies the policy with its MPI rank count and then, step by
+// step, leaves the cores other processes keep busy to them (LoadAdaptiveThreads.hpp).
 // Inside a host program (the OpenFOAM plugin) rbm follows the host's convention instead: one
 // core per process, unless OMP_NUM_THREADS says otherwise (applyHostThreadCountPolicy): a
 // flow solver's ranks already fill the cores, and threads that wait for a busy core at every
