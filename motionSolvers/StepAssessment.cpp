@@ -1,5 +1,7 @@
 #include "StepAssessment.hpp"
 
+#include "InvertedCell.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -29,12 +31,13 @@ PyramidQuality cellPyramidQuality(const PolyMesh& mesh, const MeshTopology& topo
     const auto faces = topology.facesOf(cell);
     for (const Label face : faces) {
         const auto f = static_cast<std::size_t>(face);
-        const Vector3 area = mesh.owner[f] == cell ? geometry.faceAreas[f] : -geometry.faceAreas[f];
-        smallest = std::min(smallest, dot(area, geometry.faceCentres[f] - centre) / 3.0);
+        smallest = std::min(smallest,
+                            tripleFacePyramid(geometry.faceAreas[f], geometry.faceCentres[f], centre, mesh.owner[f] == cell) /
+                                3.0);
     }
     const double volume = geometry.cellVolumes[c];
     PyramidQuality quality;
-    quality.inverted = smallest <= 0.0 || volume <= 0.0;
+    quality.inverted = isInvertedCell(volume, smallest);
     quality.ratio = std::abs(volume) > 0.0 ? static_cast<double>(faces.size()) * smallest / std::abs(volume) : 0.0;
     return quality;
 }

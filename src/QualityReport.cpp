@@ -2,6 +2,7 @@
 
 #include "CellShape.hpp"
 #include "InputError.hpp"
+#include "InvertedCell.hpp"
 #include "ThreadCount.hpp"
 
 #include <algorithm>
@@ -130,7 +131,7 @@ StepQuality QualityEvaluator::evaluateStep(std::span<const Vector3> points)
 #pragma omp parallel for schedule(static) if (worthThreading(static_cast<std::size_t>(cellCount)))
         for (Label c = 0; c < cellCount; ++c) {
             const auto polygon = planar.cell(c);
-            cellInverted_[c] = polygonSignedArea(polygon, positions) <= 0.0;
+            cellInverted_[c] = isInvertedPolygon(polygonSignedArea(polygon, positions));
             if (polygon.size() == 3) {
                 cellValues_[c] = triangleMeanRatio(positions[polygon[0]], positions[polygon[1]], positions[polygon[2]]);
             } else if (polygon.size() == 4) {
@@ -169,10 +170,10 @@ StepQuality QualityEvaluator::evaluateStep(std::span<const Vector3> points)
         for (const Label f : faces) {
             const Vector3& S = geometry_.faceAreas[f];
             const Vector3& fc = geometry_.faceCentres[f];
-            smallest = std::min(smallest, mesh_.owner[f] == c ? dot(S, fc - centre) : dot(S, centre - fc));
+            smallest = std::min(smallest, tripleFacePyramid(S, fc, centre, mesh_.owner[f] == c));
         }
         const double volume = geometry_.cellVolumes[c];
-        cellInverted_[c] = smallest <= 0.0 || volume <= 0.0;
+        cellInverted_[c] = isInvertedCell(volume, smallest);
         cellValues_[c] =
             std::abs(volume) > 0.0 ? static_cast<double>(faces.size()) * (smallest / 3.0) / std::abs(volume) : 0.0;
     }

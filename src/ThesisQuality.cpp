@@ -1,5 +1,6 @@
 #include "ThesisQuality.hpp"
 
+#include "InvertedCell.hpp"
 #include "ThreadCount.hpp"
 
 #include <algorithm>
@@ -162,7 +163,7 @@ ThesisQuality computeThesisQuality2D(const PlanarMesh& mesh, std::span<const Vec
         const auto polygon = mesh.cell(c);
         double area = 0.0;
         centres[c] = polygonCentroid(polygon, positions, area);
-        invertedCell[c] = area <= 0.0;
+        invertedCell[c] = isInvertedPolygon(area);
         if (polygon.size() == 3) {
             shapeValue[c] = triangleMeanRatio(positions[polygon[0]], positions[polygon[1]], positions[polygon[2]]);
         } else if (polygon.size() == 4) {
@@ -253,17 +254,17 @@ ThesisQuality computeThesisQuality3D(const PolyMesh& mesh, const MeshGeometry& g
         const Vector3& S = geometry.faceAreas[f];
         const Vector3& fc = geometry.faceCentres[f];
         const Label own = mesh.owner[f];
-        // Face pyramid with apex at the owner centre: volume S.(c_f - C_o)/3 must be positive.
-        if (dot(S, fc - centres[own]) <= 0.0) inverted[own] = 1;
+        // Face pyramids with apex at the cell centres (InvertedCell.hpp).
+        if (isInvertedCell(1.0, tripleFacePyramid(S, fc, centres[own], true))) inverted[own] = 1;
         if (f < internalFaceCount) {
             const Label nei = mesh.neighbour[f];
-            if (dot(S, centres[nei] - fc) <= 0.0) inverted[nei] = 1;
+            if (isInvertedCell(1.0, tripleFacePyramid(S, fc, centres[nei], false))) inverted[nei] = 1;
             nonOrthogonality.add(angle[f]);
             skewness.add(skew[f]);
         }
     }
     for (Label c = 0; c < quality.cellCount; ++c) {
-        if (inverted[c] != 0 || geometry.cellVolumes[c] <= 0.0) ++quality.invertedCellCount;
+        if (inverted[c] != 0 || isInvertedCell(geometry.cellVolumes[c], 1.0)) ++quality.invertedCellCount;
     }
     quality.nonOrthogonality = nonOrthogonality.result();
     quality.skewness = skewness.result();

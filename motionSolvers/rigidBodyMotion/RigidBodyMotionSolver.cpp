@@ -5,6 +5,7 @@
 #include "CoupledNewtonSolver.hpp"
 #include "DecoupledSolver.hpp"
 #include "InputError.hpp"
+#include "InvertedCell.hpp"
 #include "LocalGlobalSolver.hpp"
 #include "MeshGeometry.hpp"
 #include "PetscSupport.hpp"
@@ -661,7 +662,7 @@ Label RigidBodyMotionSolver::Impl::countInverted(std::span<const Vector3> nodeDi
             positions[node].y += nodeDisplacement[node].y;
         }
         for (Label c = 0; c < planar.cellCount(); ++c) {
-            if (planar.signedArea(c, positions) <= 0.0) {
+            if (isInvertedPolygon(planar.signedArea(c, positions))) {
                 ++inverted;
                 if (invertedCells) invertedCells->push_back(c);
             }
@@ -689,17 +690,18 @@ Label RigidBodyMotionSolver::Impl::countInverted(std::span<const Vector3> nodeDi
             const Vector3& area = geometry.faceAreas[f];
             const Vector3& centre = geometry.faceCentres[f];
             const Label own = mesh.owner[f];
-            smallestPyramid[own] = std::min(smallestPyramid[own], dot(area, centre - centres[own]) / 3.0);
+            smallestPyramid[own] = std::min(smallestPyramid[own], tripleFacePyramid(area, centre, centres[own], true) / 3.0);
             ++faceCounts[own];
             if (f < internalFaces) {
                 const Label nei = mesh.neighbour[f];
-                smallestPyramid[nei] = std::min(smallestPyramid[nei], dot(area, centres[nei] - centre) / 3.0);
+                smallestPyramid[nei] =
+                    std::min(smallestPyramid[nei], tripleFacePyramid(area, centre, centres[nei], false) / 3.0);
                 ++faceCounts[nei];
             }
         }
         for (std::size_t c = 0; c < cellCount; ++c) {
             const double volume = geometry.cellVolumes[c];
-            if (smallestPyramid[c] <= 0.0 || volume <= 0.0) {
+            if (isInvertedCell(volume, smallestPyramid[c])) {
                 ++inverted;
                 if (invertedCells) invertedCells->push_back(static_cast<Label>(c));
             }
