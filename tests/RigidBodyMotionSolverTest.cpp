@@ -900,7 +900,7 @@ TEST(RigidBodyMotionSolverSquares, RotatedSquaresWithEveryVariant)
         }
         EXPECT_EQ(run.report.invertedCellCount, run.quality.invertedCellCount()) << run.label;
     }
-    // DESIGN.md's figures for coupled nonlinear with uniform weights (an independent prototype).
+    // An independent prototype's figures for coupled nonlinear with uniform weights (docs/method.md §10).
     const SquaresRun& newton = findRun(runs, "coupled nonlinear (Newton)");
     EXPECT_NEAR(newton.report.energy, 7725.3, 0.05);
     EXPECT_NEAR(newton.quality.thesis.quadrilateralShape.mean, 0.99698, 5e-6);
@@ -1004,7 +1004,7 @@ TEST(RigidBodyMotionSolverSquares, DISABLED_MeasureNonOrthogonalityWithVertexAve
 }
 
 // ---------------------------------------------------------------------------------------
-// Weighting on a boundary-layer mesh (DESIGN.md §1): the NACA4415 fixture with a hex
+// Weighting on a boundary-layer mesh (docs/method.md §1): the NACA4415 fixture with a hex
 // boundary layer (checkMesh aspect ratio ~780); the airfoil turns about its trailing edge
 // (1, 0, 0), the far field is fixed. One step of coupled nonlinear RBM.
 
