@@ -1,6 +1,6 @@
 #pragma once
 // rbmMoveMesh's time loop, outside main so that tests can run it: OpenFOAM's moveMesh with
-// rbm's motion solver (DESIGN.md §3).
+// rbm's motion solver (docs/method.md §5).
 //
 // The run (documented for users in docs/rbmMoveMesh.md):
 //  0. A run that writes takes the case lock (io/CaseLock.hpp) before reading anything: a

@@ -1,4 +1,4 @@
-// The benchmark's meshes (src/BenchmarkMeshes.hpp): counts worked out by hand from the grid,
+// The benchmark's meshes (testSupport/BenchmarkMeshes.hpp): counts worked out by hand from the grid,
 // OpenFOAM's ordering and orientation rules (checkPolyMeshOrdering), volumes against the
 // box minus the hole, and the 2D extraction of the pseudo-3D meshes.
 

@@ -1,5 +1,5 @@
 #pragma once
-// The cell-neighbour graph of the RBM method (DESIGN.md §1): node j is a neighbour of
+// The cell-neighbour graph of the RBM method (docs/method.md §1): node j is a neighbour of
 // node i when they share at least one cell. Stored in CSR form: the neighbours of node i
 // are neighbours[offsets[i] .. offsets[i+1]), sorted ascending, never containing i itself.
 // The relation is symmetric.

@@ -3,7 +3,7 @@
 // (unique) points of every cell, and the cells around every point, all in CSR form.
 // Built in one pass over the faces (plus a counting sort), without vector<vector>.
 //
-// Also the checker of OpenFOAM's polyMesh rules (DESIGN.md §7), used by tests and by
+// Also the checker of OpenFOAM's polyMesh rules (docs/method.md §9), used by tests and by
 // readers that want to reject a broken mesh with a clear message:
 //  - faces have at least 3 distinct, valid point labels;
 //  - internal faces come first, owner < neighbour, sorted by owner then neighbour

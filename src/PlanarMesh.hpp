@@ -1,6 +1,6 @@
 #pragma once
 // A 2D polygon mesh: what the RBM solver works on for OpenFOAM's pseudo-3D cases
-// (DESIGN.md §4), and what the thesis' 2D quality metrics (§2.7.1) are defined on.
+// (docs/method.md §6), and what the thesis' 2D quality metrics (§2.7.1) are defined on.
 //
 // Coordinates are in the plane's own right-handed frame (see PlaneFrame in
 // PseudoTwoDExtraction.hpp): points[i].x and points[i].y are the 2D coordinates, and

@@ -1,5 +1,5 @@
 #pragma once
-// OpenFOAM's pseudo-3D (2D) meshes and their 2D form (DESIGN.md §4).
+// OpenFOAM's pseudo-3D (2D) meshes and their 2D form (docs/method.md §6).
 //
 // OpenFOAM runs 2D cases on one layer of cells between two planes:
 //  - "empty": both planes are in patches of type empty (usually one patch, frontAndBack,

@@ -1,5 +1,5 @@
 #pragma once
-// The grid quality metrics of the thesis (§2.7, reference/rbm-thesis.md), each summarised
+// The grid quality metrics of the thesis (§2.7; docs/method.md §7), each summarised
 // by its mean, standard deviation, minimum and maximum (eqs 2.98a–d):
 //
 //  2D (a PlanarMesh, cells counter-clockwise):

@@ -1,4 +1,4 @@
-// The cell-neighbour graph N(i) of DESIGN.md §1: nodes sharing at least one cell.
+// The cell-neighbour graph N(i) of docs/method.md §1: nodes sharing at least one cell.
 
 #include "CellNeighbourGraph.hpp"
 #include "MeshGenerators.hpp"

@@ -12,6 +12,7 @@
 #include "MotionSolverRegistry.hpp"
 #include "PointPatchDisplacement.hpp"
 #include "RbmEnergy.hpp"
+#include "RbmSolverCases.hpp"
 #include "RigidBodyMotionSolver.hpp"
 #include "ShortestEdges.hpp"
 
@@ -59,10 +60,7 @@ Solved solveOn(MPI_Comm communicator, const PolyMesh& mesh, const std::string& c
                const std::function<Vector3(const Vector3&)>& displacementOf)
 {
     const SolverCommunicatorScope scope(communicator);
-    const io::Dictionary dict = io::Dictionary::parseText(
-        "motionSolver rigidBodyMotionSolver;\nrigidBodyMotionSolverCoeffs\n{\n" + coefficients + "\n}\n",
-        "constant/dynamicMeshDict");
-    auto solver = builtinMotionSolvers().create(mesh, dict, nullptr, "/nonexistent/case");
+    auto solver = rbm::test::makeSolver(mesh, coefficients);
     std::vector<Vector3> values;
     for (Label p : patchMeshPoints(mesh, mesh.findPatch(moving))) values.push_back(displacementOf(mesh.points[p]));
     solver->setPatchDisplacement(moving, values);

@@ -1,6 +1,6 @@
 #pragma once
-// Initialises PETSc once per test program (every CTest entry pays PETSc's start-up once,
-// CONVENTIONS.md). Register it from the test file:
+// Initialises PETSc once per test program (every CTest entry pays PETSc's start-up once).
+// Register it from the test file:
 //   static auto* const petscEnvironment = ::testing::AddGlobalTestEnvironment(new rbm::test::PetscTestEnvironment);
 
 #include "PetscSupport.hpp"

@@ -1,5 +1,5 @@
 // Detection and extraction of OpenFOAM pseudo-3D (empty / wedge) meshes, and mapping 2D
-// positions back to both planes (DESIGN.md §4).
+// positions back to both planes (docs/method.md §6).
 
 #include "CellShape.hpp"
 #include "InputError.hpp"

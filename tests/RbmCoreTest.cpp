@@ -41,7 +41,7 @@ double degrees(double value) { return value * pi / 180.0; }
 // ---------------------------------------------------------------------------------------
 // Test meshes
 
-// Nodes sharing a cell are neighbours (the definition of DESIGN.md §1), built directly so
+// Nodes sharing a cell are neighbours (the definition of docs/method.md §1), built directly so
 // these tests do not depend on buildCellNeighbourGraph.
 CellNeighbourGraph graphFromCells(int nodeCount, const std::vector<int>& cellOffsets, const std::vector<int>& cellPoints)
 {
@@ -754,7 +754,8 @@ TEST(CoupledSolvers, WarmStartedNewtonFollowsATimeSeriesInFewIterations)
 TEST(CoupledSolvers, ThesisRotatingSquaresReachTheMeasuredEnergy)
 {
     // Full size (§3.1: 101 × 101 nodes, 20-cell hole, 9360 free nodes), 10°, uniform
-    // weights: DESIGN.md records E = 7725.3 for the coupled nonlinear method.
+    // weights: an independent prototype gave E = 7725.3 for the coupled nonlinear method
+    // (docs/method.md §10).
     const SquaresCase c = squaresCase(101, 20, degrees(10.0));
     const RbmProblem problem(2, c.mesh.points, c.mesh.graph, c.constraints, EdgeWeighting::uniform);
     ASSERT_EQ(problem.nodeCount(), 9840);
@@ -1004,7 +1005,7 @@ TEST(Decoupled, ResultDoesNotDependOnTheNodeNumbering)
 TEST(Decoupled, EveryNodeIsTheBestRigidFitOfItsNeighbours)
 {
     // At the fixed point, each node's (p_i, R_i) is the closed-form optimum of its own F_i
-    // (DESIGN.md §2): R_i the best rotation of the centred neighbour vectors, then
+    // (docs/method.md §3): R_i the best rotation of the centred neighbour vectors, then
     // p_i = mean_j (p_j − R_i (x_j − x_i)), here with uniform weights.
     const SquaresCase c = squaresCase(21, 4, degrees(10.0), 2.0);
     const RbmProblem problem(2, c.mesh.points, c.mesh.graph, c.constraints, EdgeWeighting::uniform);

@@ -19,6 +19,7 @@
 #include "PseudoTwoDExtraction.hpp"
 #include "QualityReport.hpp"
 #include "RbmEnergy.hpp"
+#include "RbmSolverCases.hpp"
 #include "RigidBodyMotionSolver.hpp"
 #include "ShortestEdges.hpp"
 #include "Stiffening.hpp"
@@ -218,14 +219,7 @@ io::Dictionary parse(const std::string& text, const std::string& file = "constan
     return io::Dictionary::parseText(text, file);
 }
 
-// A solver over `mesh` with the given coefficient entries (body of rigidBodyMotionSolverCoeffs).
-std::unique_ptr<MotionSolver> makeSolver(const PolyMesh& mesh, const std::string& coefficients,
-                                         const io::Dictionary* pointDisplacement = nullptr)
-{
-    const io::Dictionary dict =
-        parse("motionSolver rigidBodyMotionSolver;\nrigidBodyMotionSolverCoeffs\n{\n" + coefficients + "\n}\n");
-    return builtinMotionSolvers().create(mesh, dict, pointDisplacement, "/nonexistent/case");
-}
+using rbm::test::makeSolver;
 
 const RigidBodyMotionSolver& asRbm(const MotionSolver& solver) { return dynamic_cast<const RigidBodyMotionSolver&>(solver); }
 
@@ -951,7 +945,7 @@ TEST(RigidBodyMotionSolverSquares, RotatedSquaresWithEveryVariant)
         }
         EXPECT_EQ(run.report.invertedCellCount, run.quality.invertedCellCount()) << run.label;
     }
-    // DESIGN.md's figures for coupled nonlinear with uniform weights (an independent prototype).
+    // An independent prototype's figures for coupled nonlinear with uniform weights (docs/method.md §10).
     const SquaresRun& newton = findRun(runs, "coupled nonlinear (Newton)");
     EXPECT_NEAR(newton.report.energy, 7725.3, 0.05);
     EXPECT_NEAR(newton.quality.thesis.quadrilateralShape.mean, 0.99698, 5e-6);
@@ -1055,16 +1049,11 @@ TEST(RigidBodyMotionSolverSquares, DISABLED_MeasureNonOrthogonalityWithVertexAve
 }
 
 // ---------------------------------------------------------------------------------------
-// Weighting on a boundary-layer mesh (DESIGN.md §1): the NACA4415 fixture with a hex
+// Weighting on a boundary-layer mesh (docs/method.md §1): the NACA4415 fixture with a hex
 // boundary layer (checkMesh aspect ratio ~780); the airfoil turns about its trailing edge
 // (1, 0, 0), the far field is fixed. One step of coupled nonlinear RBM.
 
-const PolyMesh& airfoilMesh()
-{
-    static const PolyMesh mesh =
-        io::readPolyMesh(std::filesystem::path(RBM_TEST_DATA_DIR) / "airfoilBoundaryLayer" / "constant" / "polyMesh");
-    return mesh;
-}
+using rbm::test::airfoilMesh;
 
 using rbm::test::shortestEdgeAtEachPoint;
 

@@ -18,6 +18,7 @@
 #include "RbmEnergy.hpp"
 #include "ReducedNewtonSolver.hpp"
 #include "RbmProblem.hpp"
+#include "RbmSolverCases.hpp"
 #include "ThreadCount.hpp"
 
 #include <gtest/gtest.h>
@@ -129,12 +130,7 @@ std::vector<double> labelsAsDoubles(const CellNeighbourGraph& graph)
     return flat;
 }
 
-const PolyMesh& airfoilMesh()
-{
-    static const PolyMesh mesh =
-        io::readPolyMesh(std::filesystem::path(RBM_TEST_DATA_DIR) / "airfoilBoundaryLayer" / "constant" / "polyMesh");
-    return mesh;
-}
+using rbm::test::airfoilMesh;
 
 const PseudoTwoDMesh& airfoilPlane()
 {

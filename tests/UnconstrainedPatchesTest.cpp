@@ -5,6 +5,7 @@
 #include "InputError.hpp"
 #include "MeshGenerators.hpp"
 #include "MotionSolverRegistry.hpp"
+#include "RbmSolverCases.hpp"
 #include "RigidBodyMotionSolver.hpp"
 
 #include <gtest/gtest.h>
@@ -34,10 +35,7 @@ const char* const boxConditions = R"(
 std::unique_ptr<MotionSolver> boxSolver(const PolyMesh& mesh, const std::string& coefficients)
 {
     const io::Dictionary field = io::Dictionary::parseText(boxConditions, "0/pointDisplacement");
-    const io::Dictionary dict = io::Dictionary::parseText(
-        "motionSolver rigidBodyMotionSolver;\nrigidBodyMotionSolverCoeffs\n{\n" + coefficients + "\n}\n",
-        "constant/dynamicMeshDict");
-    return builtinMotionSolvers().create(mesh, dict, &field, "/nonexistent/case");
+    return rbm::test::makeSolver(mesh, coefficients, &field);
 }
 
 // Largest distance of the patch's points (those on no prescribed patch) from its initial plane

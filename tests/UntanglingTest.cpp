@@ -9,6 +9,7 @@
 #include "MotionSolverRegistry.hpp"
 #include "PointPatchDisplacement.hpp"
 #include "RbmEnergy.hpp"
+#include "RbmSolverCases.hpp"
 #include "RigidBodyMotionSolver.hpp"
 
 #include <gtest/gtest.h>
@@ -48,10 +49,7 @@ std::unique_ptr<MotionSolver> slipBoxSolver(const PolyMesh& mesh, double angle, 
             bottom { type fixedValue; value uniform (0 0 0); }
             top { type fixedValue; value uniform (0 0 0); }
         })field", "0/pointDisplacement");
-    const io::Dictionary dict = io::Dictionary::parseText(
-        "motionSolver rigidBodyMotionSolver;\nrigidBodyMotionSolverCoeffs\n{\n" + coefficients + "\n}\n",
-        "constant/dynamicMeshDict");
-    std::unique_ptr<MotionSolver> solver = builtinMotionSolvers().create(mesh, dict, &field, "/nonexistent/case");
+    std::unique_ptr<MotionSolver> solver = rbm::test::makeSolver(mesh, coefficients, &field);
     const Label top = mesh.findPatch("top");
     const std::vector<Label> points = patchMeshPoints(mesh, top);
     const Matrix3 rotation = rotationFromVector({0.0, 0.0, angle});

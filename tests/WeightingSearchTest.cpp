@@ -24,6 +24,7 @@
 #include "PseudoTwoDExtraction.hpp"
 #include "QualityReport.hpp"
 #include "RigidBodyMotionOptions.hpp"
+#include "RbmSolverCases.hpp"
 #include "RigidBodyMotionSolver.hpp"
 #include "RbmEnergy.hpp"
 #include "Stiffening.hpp"
@@ -62,13 +63,7 @@ struct RigidMotion {
     }
 };
 
-std::unique_ptr<MotionSolver> makeSolver(const PolyMesh& mesh, const std::string& coefficients)
-{
-    const io::Dictionary dict = io::Dictionary::parseText(
-        "motionSolver rigidBodyMotionSolver;\nrigidBodyMotionSolverCoeffs\n{\n" + coefficients + "\n}\n",
-        "constant/dynamicMeshDict");
-    return builtinMotionSolvers().create(mesh, dict, nullptr, "/nonexistent/case");
-}
+using rbm::test::makeSolver;
 
 struct EdgeInfo {
     double length = 0.0;

@@ -5,7 +5,7 @@
 // (3 unknowns per node in 2D, 6 in 3D). H depends only on the reference mesh and the
 // weights: it is assembled and factorised once, in the constructor, and reused by every
 // solve(). Positions are x + u (node-local parameters need no cos/sin to recover them,
-// DESIGN.md §1). Sliding nodes: H ← P H P + s (I − P), right-hand side projected.
+// docs/method.md §2). Sliding nodes: H ← P H P + s (I − P), right-hand side projected.
 //
 // Options prefix: rbm_linearized_ (also rbm_ and the global options), e.g.
 // -rbm_linearized_ksp_type cg -rbm_linearized_pc_type gamg.

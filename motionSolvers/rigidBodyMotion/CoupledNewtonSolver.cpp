@@ -278,7 +278,7 @@ RbmResult CoupledNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
     // Rotations are re-fitted to the displacements (the local step of LocalGlobalSolver)
     // before Newton starts and after it stops: at a minimum of E every node's rotation is
     // the best fit of its own edges, so a converged state whose rotations differ from
-    // their fits is a saddle point with flipped node frames (DESIGN.md §1); Newton is
+    // their fits is a saddle point with flipped node frames (docs/method.md §2); Newton is
     // restarted from the re-fitted state (at most maximumRestarts times).
     std::vector<Matrix3> fitted;
     const int dim = problem_.dimension();

@@ -7,7 +7,7 @@
 // coupled linearized solution; in both, every node's rotation is then replaced by the best
 // fit of its own edges (the local step of LocalGlobalSolver). With the linearized rotations
 // themselves Newton stopped, for a 120° rigid turn, at a stationary point with flipped node
-// frames (E = 5.3 instead of 0; DESIGN.md §1 saw the same from a zero start). At a true
+// frames (E = 5.3 instead of 0; docs/method.md §2: the same happens from a zero start). At a true
 // minimum every rotation equals its fit, so after convergence the fits are compared with
 // the rotations and Newton is restarted from the fitted state when they differ.
 //

@@ -3,7 +3,7 @@
 // rigid motion (u_i, R_i) that best fits its own stencil,
 //     min F_i = 1/2 Σ_{j∈N(i)} w_ij |(p_j − p_i) − R_i (x_j − x_i)|²     (eq 2.2)
 // with its neighbours held where they are. The thesis sweeps the nodes (Gauss–Seidel)
-// until nothing moves; that needs thousands of sweeps (DESIGN.md §1) and its result
+// until nothing moves; that needs thousands of sweeps (docs/method.md §3) and its result
 // depends on the node order until it has converged. This solver computes the fixed point
 // of those sweeps directly, so the result does not depend on the numbering:
 //
@@ -12,7 +12,7 @@
 //               K_dec u = b(R), K_dec the weighted graph Laplacian of the decoupled form
 //               (K_ii = Σ_j w_ij, K_ij = −w_ij; symmetric since w_ij = w_ji), assembled and
 //               factorised once. Alternating a per-node rotation fit (the closed form
-//               DESIGN.md §2 gives for the thesis' Newton iteration of eq 2.22) with one
+//               docs/method.md §3 gives for the thesis' Newton iteration of eq 2.22) with one
 //               Laplacian solve reaches the fixed point in tens of solves.
 //   linearized  With small angles (eq 2.48, 2.92) the conditions of all nodes form one
 //               linear, non-symmetric system in (u, θ) (block size 3 or 6): one solve.

@@ -1,5 +1,5 @@
 #pragma once
-// Local/global minimisation of the coupled RBM energy (DESIGN.md §2; the ARAP
+// Local/global minimisation of the coupled RBM energy (docs/method.md §3; the ARAP
 // alternation of Sorkine & Alexa 2007 on the cell-neighbour graph):
 //   local step   every unknown node i takes the rotation that best maps its reference
 //                edges d_ij = x_j − x_i onto its current edges e_ij = p_j − p_i

@@ -1,5 +1,5 @@
 #pragma once
-// The coupled RBM energy with node-local rotations (DESIGN.md §1; thesis F_total, eqs
+// The coupled RBM energy with node-local rotations (docs/method.md §2; thesis F_total, eqs
 // 2.2, 2.3, 2.10–2.13, 2.23, 2.78, 2.79 after the change of variables explained there):
 //
 //     E = 1/2 Σ_{i unknown} Σ_{j∈N(i)} w_ij |r_ij|²,   r_ij = (p_j − p_i) − R_i (x_j − x_i)

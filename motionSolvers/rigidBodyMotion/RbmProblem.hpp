@@ -1,5 +1,5 @@
 #pragma once
-// The RBM problem without any file behind it (DESIGN.md §1): reference node positions
+// The RBM problem without any file behind it (docs/method.md §1–2): reference node positions
 // x_k, the cell-neighbour graph N(k), a class per node (prescribed / free / sliding on a
 // plane), the dimension (2 or 3) and the edge weights w_ij.
 //
@@ -54,7 +54,7 @@ struct NodeConstraint {
     Vector3 secondNormal{};
 };
 
-// Edge weights w_ij (DESIGN.md §1): the thesis uses uniform; 1/|d|² makes every
+// Edge weights w_ij (docs/method.md §1): the thesis uses uniform; 1/|d|² makes every
 // neighbour's relative deformation count alike on stretched cells and is the default.
 enum class EdgeWeighting {
     uniform,                 // w_ij = 1 (thesis)

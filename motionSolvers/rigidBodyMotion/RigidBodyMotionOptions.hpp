@@ -2,7 +2,7 @@
 // The options of the rigid-body-motion (RBM) motion solver: the `rigidBodyMotionSolverCoeffs`
 // dictionary of constant/dynamicMeshDict. Every entry is optional; the defaults make
 // `motionSolver rigidBodyMotionSolver;` alone the robust choice (coupled nonlinear RBM with
-// Newton's method and 1/|d|² weights, DESIGN.md §1–2).
+// Newton's method and 1/|d|² weights, docs/method.md §1 and §3).
 //
 //     rigidBodyMotionSolverCoeffs
 //     {

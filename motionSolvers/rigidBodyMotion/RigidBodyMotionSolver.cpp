@@ -93,7 +93,7 @@ private:
 // The prescribed displacement along a sub-step path, from `from` (fraction 0) to `to`
 // (fraction 1). Prescribed nodes are grouped by the patch that prescribes them; a group whose
 // motion from -> to is rigid moves along the rigid motion (a rotation is split into rotations,
-// not chords: DESIGN.md §2), others along straight lines.
+// not chords: docs/method.md §4), others along straight lines.
 class BoundaryPath {
 public:
     BoundaryPath(int dimension, const std::vector<Vector3>& reference, const std::vector<int>& groupOffsets,
@@ -1056,7 +1056,7 @@ MotionSolveReport RigidBodyMotionSolver::solve()
         report.converged = true;
         report.reason = "no boundary displacement";
         // Not a warm start: the next solve starts from the linearized solution, as Newton
-        // from zero can stop where node frames flip (DESIGN.md §1).
+        // from zero can stop where node frames flip (docs/method.md §2).
         impl.hasState = false;
     } else {
         if (impl.options.formulation == RbmFormulation::nonlinear) impl.solveOnInitialMesh(target, report);

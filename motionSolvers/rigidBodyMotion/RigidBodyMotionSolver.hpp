@@ -1,12 +1,12 @@
 #pragma once
-// rigidBodyMotionSolver: the OpenFOAM-facing RBM motion solver (thesis ch. 2, DESIGN.md). It
+// rigidBodyMotionSolver: the OpenFOAM-facing RBM motion solver (thesis ch. 2, docs/method.md). It
 // turns a PolyMesh and the boundary conditions of its point displacement into an RBM problem,
 // solves it with the variant chosen in `rigidBodyMotionSolverCoeffs`
 // (RigidBodyMotionOptions.hpp), and writes the displacement of every point back.
 //
 //  - Dimension. A pseudo-3D mesh (one layer of cells between `empty` or `wedge` planes) is
 //    solved in 2D on the nodes of its front plane (3 unknowns per node) and lifted back to both
-//    planes, each point keeping its out-of-plane coordinate (DESIGN.md §4); every other mesh is
+//    planes, each point keeping its out-of-plane coordinate (docs/method.md §6); every other mesh is
 //    solved in 3D (6 unknowns per node, any cell type: the method only needs the
 //    cell-neighbour graph).
 //  - Node classes from the patch conditions of every point: prescribed beats sliding beats
@@ -14,7 +14,7 @@
 //    they meet (RbmProblem's line nodes); on three planes without a common line, or on two
 //    lines in 2D (they meet in a point), it is held where it is. In 2D, sliding normals are
 //    projected into the plane; a sliding patch parallel to the plane leaves its nodes free.
-//  - Time stepping (DESIGN.md §3). Every solve() is for the TOTAL displacement relative to
+//  - Time stepping (docs/method.md §5). Every solve() is for the TOTAL displacement relative to
 //    points0. The nonlinear variants minimise the energy on the initial mesh, warm-started
 //    from the previous solve, with the graph, the weights and the PETSc objects kept alive
 //    between calls. The linearized variants apply the thesis' sub-step method (§2.6) from

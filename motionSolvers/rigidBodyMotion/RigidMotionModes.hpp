@@ -3,7 +3,7 @@
 // space that algebraic multigrid needs to coarsen these systems well.
 //
 // A rigid motion of every node (translation t, rotation Ω about a centre c) has zero RBM
-// energy (DESIGN.md §1): u_i = t + Ω × (x_i − c) and every node's rotation ω_i = Ω. So the
+// energy (docs/method.md §2): u_i = t + Ω × (x_i − c) and every node's rotation ω_i = Ω. So the
 // coupled matrices are nearly singular along these vectors wherever the prescribed nodes are
 // far away, which is exactly what smoothed-aggregation AMG (GAMG) must know to build coarse
 // spaces that represent them; its default (a constant per unknown component) misses the

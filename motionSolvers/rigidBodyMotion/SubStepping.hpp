@@ -16,7 +16,7 @@
 //                    rotations compose. Needed by the linearized variants.
 //   initialMesh      every increment is solved against the initial mesh for the total
 //                    prescribed displacement ū(s_k), warm-started from increment k−1
-//                    (continuation; the result depends only on the final boundary, DESIGN.md §3).
+//                    (continuation; the result depends only on the final boundary, docs/method.md §5).
 //
 // The boundary motion at fraction s ∈ (0, 1] of the step is ū(s) = s ū unless a motion law
 // is given (a rotation should be split into rotations, not into chords).
