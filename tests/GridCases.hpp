@@ -125,4 +125,21 @@ inline std::vector<Vector3> largeTopMotion(const GridCase& c)
     return prescribed;
 }
 
+// P (K ⊗ I) P z on compact displacement vectors, K's values on problem.blockPattern().
+inline std::vector<double> projectedLaplacianTimes(const RbmProblem& problem, const std::vector<double>& laplacian,
+                                                   std::vector<double> z)
+{
+    const int dim = problem.dimension();
+    const BlockPattern& pattern = problem.blockPattern();
+    problem.projectSliding(z, dim);
+    std::vector<double> y(z.size(), 0.0);
+    for (int a = 0; a < problem.unknownNodeCount(); ++a)
+        for (int position = pattern.rowOffsets[a]; position < pattern.rowOffsets[a + 1]; ++position)
+            for (int q = 0; q < dim; ++q)
+                y[static_cast<std::size_t>(a) * dim + q] +=
+                    laplacian[position] * z[static_cast<std::size_t>(pattern.columns[position]) * dim + q];
+    problem.projectSliding(y, dim);
+    return y;
+}
+
 } // namespace rbm::motion

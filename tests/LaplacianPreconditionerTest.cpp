@@ -19,23 +19,6 @@ static ::testing::Environment* const petscEnvironment =
 namespace rbm::motion {
 namespace {
 
-// P (K ⊗ I) P z, compact.
-std::vector<double> projectedLaplacianTimes(const RbmProblem& problem, const std::vector<double>& laplacian,
-                                            std::vector<double> z)
-{
-    const int dim = problem.dimension();
-    const BlockPattern& pattern = problem.blockPattern();
-    problem.projectSliding(z, dim);
-    std::vector<double> y(z.size(), 0.0);
-    for (int a = 0; a < problem.unknownNodeCount(); ++a)
-        for (int position = pattern.rowOffsets[a]; position < pattern.rowOffsets[a + 1]; ++position)
-            for (int q = 0; q < dim; ++q)
-                y[static_cast<std::size_t>(a) * dim + q] +=
-                    laplacian[position] * z[static_cast<std::size_t>(pattern.columns[position]) * dim + q];
-    problem.projectSliding(y, dim);
-    return y;
-}
-
 // ‖P K P z − P r‖ / ‖P r‖ for z = apply(r), r random.
 double relativeResidual(const RbmProblem& problem, LaplacianPreconditioner& preconditioner)
 {

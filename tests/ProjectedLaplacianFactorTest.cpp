@@ -55,15 +55,8 @@ TEST(ProjectedLaplacianFactor, SolvesTheProjectedLaplacianOnObliquePlanesAndLine
         std::vector<double> projected = z;
         problem.projectSliding(projected, dim);
         for (std::size_t k = 0; k < z.size(); ++k) EXPECT_NEAR(projected[k], z[k], 1e-13) << dimension << " " << k;
-        // P (K ⊗ I) z = P r.
-        const BlockPattern& pattern = problem.blockPattern();
-        std::vector<double> residual(z.size(), 0.0);
-        for (int a = 0; a < problem.unknownNodeCount(); ++a)
-            for (int position = pattern.rowOffsets[a]; position < pattern.rowOffsets[a + 1]; ++position)
-                for (int q = 0; q < dim; ++q)
-                    residual[static_cast<std::size_t>(a) * dim + q] +=
-                        laplacian[position] * z[static_cast<std::size_t>(pattern.columns[position]) * dim + q];
-        problem.projectSliding(residual, dim);
+        // P (K ⊗ I) P z = P r.
+        std::vector<double> residual = projectedLaplacianTimes(problem, laplacian, z);
         problem.projectSliding(r, dim);
         for (std::size_t k = 0; k < r.size(); ++k) residual[k] -= r[k];
         EXPECT_LT(euclideanNorm(residual), 1e-12 * euclideanNorm(r)) << dimension;
