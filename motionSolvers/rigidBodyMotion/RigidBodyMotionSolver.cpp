@@ -7,6 +7,7 @@
 #include "InputError.hpp"
 #include "InvertedCell.hpp"
 #include "LocalGlobalSolver.hpp"
+#include "NodeClasses.hpp"
 #include "MeshGeometry.hpp"
 #include "PetscSupport.hpp"
 #include "PseudoTwoDExtraction.hpp"
@@ -268,7 +269,6 @@ bool allZero(std::span<const Vector3> values)
     return std::all_of(values.begin(), values.end(), [](const Vector3& v) { return v == Vector3{}; });
 }
 
-constexpr int heldNode = -2;  // prescribed with zero displacement by the solver itself (conflicting slides, isolated nodes)
 
 } // namespace
 
@@ -325,11 +325,6 @@ struct RigidBodyMotionSolver::Impl {
     void chooseAutomaticStiffening(std::span<const Vector3> target);
     // Recomputes the node classes from the patch conditions; rebuilds the problem when they changed.
     void updateProblem();
-    // Adds a sliding plane (a line in 2D) of 3D normal `normal` to a node's constraint: a
-    // second plane makes it slide on their intersection line (3D), a further one holds it.
-    void addSlidingPlane(NodeConstraint& constraint, int& prescriber, Vector3 normal, bool mirror) const;
-    // Wedge meshes: the points on the axis slide along it.
-    void constrainWedgeAxis(std::vector<NodeConstraint>& classes, std::vector<int>& prescriber) const;
     std::vector<Vector3> prescribedTarget() const;
     std::unique_ptr<RbmSolver> makeSolver(const RbmProblem& forProblem) const;
     // A problem on `points` with the node classes `nodeConstraints` (by default the current
@@ -431,45 +426,10 @@ void RigidBodyMotionSolver::Impl::updateProblem()
     if (problem && owner.boundaryRevision() == problemBoundaryRevision) return;
     problemBoundaryRevision = owner.boundaryRevision();
     const int n = nodeCount();
-    std::vector<NodeConstraint> classes(n);
-    std::vector<int> prescriber(n, -1);
+    NodeClasses nodeClasses = classifyNodes(owner.boundary(), twoD.get(), *graph, unconstrained);
+    std::vector<NodeConstraint>& classes = nodeClasses.constraints;
+    std::vector<int>& prescriber = nodeClasses.prescribingPatch;
     const BoundaryDescription& conditions = owner.boundary();
-    for (std::size_t patch = 0; patch < conditions.size(); ++patch) {
-        const BoundaryPatchDescription& condition = conditions[patch];
-        const BoundaryNodeClass nodeClass = condition.nodeClass;
-        if (nodeClass == BoundaryNodeClass::ignored) continue;
-        // A patch its condition leaves unconstrained keeps its surface unless it floats
-        // (UnconstrainedPatches.hpp).
-        if (nodeClass == BoundaryNodeClass::free && unconstrained.floats(static_cast<Label>(patch))) continue;
-        const std::vector<Label>& points = condition.meshPoints;
-        const std::vector<Vector3>& slidingNormals =
-            nodeClass == BoundaryNodeClass::free
-                ? unconstrained.slidingNormals(static_cast<Label>(patch), points)
-                : condition.slidingNormals;
-        for (std::size_t k = 0; k < points.size(); ++k) {
-            const int node = twoD ? twoD->nodeOfPoint[points[k]] : points[k];
-            if (node < 0) continue;
-            NodeConstraint& constraint = classes[node];
-            if (nodeClass == BoundaryNodeClass::prescribed) {
-                // Prescribed beats sliding beats free; between prescribing patches the first wins.
-                if (constraint.kind != NodeKind::prescribed || prescriber[node] == heldNode) {
-                    constraint = {NodeKind::prescribed, {}};
-                    prescriber[node] = static_cast<int>(patch);
-                }
-                continue;
-            }
-            if (constraint.kind == NodeKind::prescribed) continue;
-            addSlidingPlane(constraint, prescriber[node], slidingNormals[k], condition.mirror);
-        }
-    }
-    if (twoD && twoD->kind == PseudoTwoDKind::Wedge) constrainWedgeAxis(classes, prescriber);
-    // Nodes without neighbours (points no cell uses) cannot move.
-    for (int node = 0; node < n; ++node) {
-        if (graph->offsets[node + 1] == graph->offsets[node] && classes[node].kind != NodeKind::prescribed) {
-            classes[node] = {NodeKind::prescribed, {}};
-            prescriber[node] = heldNode;
-        }
-    }
 
     bool changed = !problem;
     const std::vector<NodeConstraint>& constraints = problem ? problem->constraints() : classes;
@@ -500,48 +460,6 @@ void RigidBodyMotionSolver::Impl::updateProblem()
     baseSolver.reset();
     problem.reset();
     problem = problemAround(referencePoints, std::move(classes));
-}
-
-void RigidBodyMotionSolver::Impl::addSlidingPlane(NodeConstraint& constraint, int& prescriber, Vector3 normal,
-                                                  bool mirror) const
-{
-    if (twoD) {
-        normal = twoD->frame.toLocal(normal);
-        normal.z = 0.0;
-    }
-    const double length = norm(normal);
-    if (!(length > 1e-8)) return;  // a plane parallel to the 2D plane: no in-plane constraint
-    normal /= length;
-    if (constraint.kind == NodeKind::free) {
-        constraint = {NodeKind::sliding, normal, mirror};
-    } else if (norm(cross(constraint.normal, normal)) <= 1e-6) {
-        constraint.mirror = constraint.mirror || mirror;  // a mirror on the same plane
-    } else if (!twoD && constraint.secondNormal == Vector3{}) {
-        // Two different planes (3D): the node slides along their intersection line.
-        constraint.secondNormal = normal;
-    } else if (!twoD && std::abs(dot(normal, cross(constraint.normal, constraint.secondNormal))) <=
-                            1e-6 * norm(cross(constraint.normal, constraint.secondNormal))) {
-        // A further plane through the same line (its normal ⟂ the line): still that line.
-    } else {
-        // Two lines in 2D meet in a point, so do three planes in 3D: the node stays.
-        constraint = {NodeKind::prescribed, {}};
-        prescriber = heldNode;
-    }
-}
-
-void RigidBodyMotionSolver::Impl::constrainWedgeAxis(std::vector<NodeConstraint>& classes,
-                                                     std::vector<int>& prescriber) const
-{
-    // A point where the two wedge planes meet lies on the axis of the axisymmetric domain:
-    // OpenFOAM's wedge condition keeps it there (a point off the axis would open a hole along
-    // it). In the front plane the axis is a line; the point slides along it, a mirror line of
-    // the domain, unless a patch prescribes it.
-    const Vector3 acrossAxis = cross(twoD->frame.normal, twoD->wedgeAxis);
-    for (int node = 0; node < nodeCount(); ++node) {
-        if (twoD->backPointOfNode[node] != twoD->frontPointOfNode[node]) continue;
-        if (classes[node].kind == NodeKind::prescribed) continue;
-        addSlidingPlane(classes[node], prescriber[node], acrossAxis, true);
-    }
 }
 
 std::unique_ptr<RbmProblem> RigidBodyMotionSolver::Impl::problemAround(std::vector<Vector3> points,

@@ -1,0 +1,38 @@
+#pragma once
+// The class of every node of the RBM problem (prescribed, sliding on a plane or a line, free),
+// derived from the boundary description, in one place:
+//
+//   - a point on several patches: prescribed beats sliding beats free; between prescribing
+//     patches the first wins (its points move with it as a group);
+//   - a patch whose condition leaves its points unconstrained (zeroGradient, ...) slides on its
+//     own surface unless it floats (UnconstrainedPatches.hpp);
+//   - a node on two sliding planes slides on their intersection line (3D); on two lines in 2D
+//     or three planes in 3D, it is held where it is;
+//   - on a wedge (axisymmetric) mesh, the points on the axis slide along it;
+//   - a node without neighbours (a point no cell uses) is held.
+// In 2D the normals are those of the front plane's frame, their out-of-plane part removed.
+
+#include "BoundaryDescription.hpp"
+#include "CellNeighbourGraph.hpp"
+#include "PseudoTwoDExtraction.hpp"
+#include "RbmProblem.hpp"
+#include "UnconstrainedPatches.hpp"
+
+#include <vector>
+
+namespace rbm::motion {
+
+// prescribingPatch of a node the classification itself holds in place (conflicting slides,
+// isolated nodes): prescribed with zero displacement.
+inline constexpr int heldNode = -2;
+
+struct NodeClasses {
+    std::vector<NodeConstraint> constraints;  // per node of the problem
+    std::vector<int> prescribingPatch;        // per node: the patch that prescribes it, heldNode, or -1
+};
+
+// `twoD`: the pseudo-2D mesh the problem is solved on, or nullptr in 3D (nodes are mesh points).
+NodeClasses classifyNodes(const BoundaryDescription& boundary, const PseudoTwoDMesh* twoD,
+                          const CellNeighbourGraph& graph, UnconstrainedPatches& unconstrained);
+
+} // namespace rbm::motion
