@@ -343,9 +343,7 @@ MoveMeshRun::MoveMeshRun(MoveMeshOptions options, std::ostream& out, std::ostrea
                                                      caseDirectory_);
     // The quality checks: the topology above (the memory estimate's, and VTK's below) and the
     // solver's 2D mesh of a pseudo-3D case, each built once.
-    const auto* rbmSolver = dynamic_cast<const motion::RigidBodyMotionSolver*>(solver_.get());
-    assessor_ = std::make_unique<motion::StepAssessor>(mesh_, std::move(topology),
-                                                       rbmSolver ? rbmSolver->twoDMesh() : nullptr);
+    assessor_ = std::make_unique<motion::StepAssessor>(mesh_, std::move(topology), solver_->twoDMesh());
     cells_ = std::make_unique<CellFieldWorkspace>();
 
     // The displacement at the start time: the start folder's internalField (zero in a fresh
@@ -560,15 +558,7 @@ void MoveMeshRun::printHeader() const
          << "Mesh          : " << mesh_.pointCount() << " points, " << mesh_.faceCount() << " faces, "
          << mesh_.cellCount() << " cells, " << mesh_.patches.size() << " patches\n"
          << "Motion solver : " << solver_->typeName();
-    if (const auto* rbmSolver = dynamic_cast<const motion::RigidBodyMotionSolver*>(solver_.get())) {
-        out_ << ": " << rbmSolver->options().describe();
-        if (rbmSolver->options().stiffening.automaticPatches && !rbmSolver->stiffeningPatches().empty()) {
-            out_ << " = power " << rbmSolver->options().stiffening.exponent << " inverseDistance (";
-            for (std::size_t k = 0; k < rbmSolver->stiffeningPatches().size(); ++k)
-                out_ << (k ? " " : "") << mesh_.patches[rbmSolver->stiffeningPatches()[k]].name;
-            out_ << ") while every prescribed patch moves rigidly";
-        }
-    }
+    if (const std::string settings = solver_->describe(); !settings.empty()) out_ << ": " << settings;
     out_ << " (constant/dynamicMeshDict)\n"
          << "Boundary      : " << relative(boundaryFieldFile_) << "\n"
          << "Threads       : " << describeThreadCount() << "\n";

@@ -34,6 +34,10 @@
 #include <string_view>
 #include <vector>
 
+namespace rbm {
+struct PseudoTwoDMesh;
+}
+
 namespace rbm::motion {
 
 // What one solve() did, for the per-time-step log line.
@@ -89,6 +93,14 @@ public:
 
     // Computes the displacement of the free and sliding points.
     virtual MotionSolveReport solve() = 0;
+
+    // The solver's settings in words, for a program's header (e.g. "coupled nonlinear
+    // (reducedNewton), weighting inverseDistanceSquared, ..."); empty: nothing to say.
+    virtual std::string describe() const { return {}; }
+
+    // The 2D mesh a pseudo-2D case is solved on (its quality checks reuse it); nullptr when
+    // the solver works on the 3D mesh.
+    virtual const PseudoTwoDMesh* twoDMesh() const { return nullptr; }
 
     // After a solve that left inverted cells: which of this solver's options can help for
     // this motion, or why none will (one or more sentences). Empty: no advice of its own.

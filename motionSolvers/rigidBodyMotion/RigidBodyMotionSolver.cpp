@@ -907,6 +907,21 @@ double RigidBodyMotionSolver::Impl::smallestCellSizeRatio() const
     return *percentile;
 }
 
+std::string RigidBodyMotionSolver::describe() const
+{
+    const RigidBodyMotionOptions& o = impl_->options;
+    std::string text = o.describe();
+    if (o.stiffening.automaticPatches && !impl_->stiffenedPatches.empty()) {
+        std::ostringstream stiffening;
+        stiffening << " = power " << o.stiffening.exponent << " inverseDistance (";
+        for (std::size_t k = 0; k < impl_->stiffenedPatches.size(); ++k)
+            stiffening << (k ? " " : "") << mesh().patches[impl_->stiffenedPatches[k]].name;
+        stiffening << ") while every prescribed patch moves rigidly";
+        text += stiffening.str();
+    }
+    return text;
+}
+
 std::string RigidBodyMotionSolver::invertedStepAdvice() const
 {
     const Impl& impl = *impl_;

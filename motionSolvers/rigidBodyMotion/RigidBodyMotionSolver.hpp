@@ -71,7 +71,9 @@ public:
     // 2 for pseudo-3D meshes (solved on the front plane), 3 otherwise.
     int dimension() const;
     // The 2D mesh and the point maps of a pseudo-3D mesh; nullptr in 3D.
-    const PseudoTwoDMesh* twoDMesh() const;
+    const PseudoTwoDMesh* twoDMesh() const override;
+    // options().describe(), and the patches `stiffening auto` chose.
+    std::string describe() const override;
     // The RBM problem of the last solve (node classes, graph, weights); nullptr before the first.
     const RbmProblem* problem() const;
     // Per node (2D: planar node, in the plane's frame; 3D: mesh point): displacement and
