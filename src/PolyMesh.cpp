@@ -34,6 +34,13 @@ Label PolyMesh::findPatch(const std::string& name) const
     return -1;
 }
 
+std::string patchNameList(const PolyMesh& mesh)
+{
+    std::string names;
+    for (const Patch& patch : mesh.patches) names += (names.empty() ? "" : " ") + patch.name;
+    return names;
+}
+
 std::vector<Label> patchMeshPoints(const PolyMesh& mesh, Label patchIndex)
 {
     const Patch& patch = mesh.patches.at(static_cast<std::size_t>(patchIndex));

@@ -77,4 +77,7 @@ public:
 // in order.
 std::vector<Label> patchMeshPoints(const PolyMesh& mesh, Label patchIndex);
 
+// The patch names separated by spaces, in patch order (for "Valid patches are: ..." messages).
+std::string patchNameList(const PolyMesh& mesh);
+
 } // namespace rbm

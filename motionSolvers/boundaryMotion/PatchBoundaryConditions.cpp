@@ -36,13 +36,6 @@ io::Dictionary defaultPointDisplacement(const std::filesystem::path& caseDirecto
                                      (caseDirectory / "0" / "pointDisplacement").string() + " (default: fixedValue 0)");
 }
 
-std::string patchNames(const PolyMesh& mesh)
-{
-    std::string names;
-    for (const Patch& patch : mesh.patches) names += (names.empty() ? "" : " ") + patch.name;
-    return names;
-}
-
 } // namespace
 
 PatchBoundaryConditions::PatchBoundaryConditions(const PolyMesh& mesh, const io::Dictionary* pointDisplacement,
@@ -111,7 +104,7 @@ bool PatchBoundaryConditions::setPatchDisplacement(std::string_view patchName, s
     const Label patchIndex = mesh_.findPatch(std::string(patchName));
     if (patchIndex < 0)
         throw std::invalid_argument("setPatchDisplacement: unknown patch " + std::string(patchName) +
-                                    ". Valid patches are: " + patchNames(mesh_));
+                                    ". Valid patches are: " + patchNameList(mesh_));
     const Patch& patch = mesh_.patches[patchIndex];
     if (patch.type == "empty" || patch.type == "wedge")
         throw std::invalid_argument("setPatchDisplacement: patch " + patch.name + " is of type " + patch.type +

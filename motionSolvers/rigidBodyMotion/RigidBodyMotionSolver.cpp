@@ -386,12 +386,9 @@ void RigidBodyMotionSolver::Impl::buildStiffening()
                 found = true;
             }
         }
-        if (!found) {
-            std::string valid;
-            for (const Patch& patch : mesh.patches) valid += (valid.empty() ? "" : " ") + patch.name;
+        if (!found)
             throw InputError(options.file, stiffening.line,
-                             "stiffening: unknown patch " + name + ". Valid patches are: " + valid);
-        }
+                             "stiffening: unknown patch " + name + ". Valid patches are: " + patchNameList(mesh));
     }
     NearestSurface surface;
     if (twoD) {

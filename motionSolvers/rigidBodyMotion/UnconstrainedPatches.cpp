@@ -44,12 +44,9 @@ UnconstrainedPatches::UnconstrainedPatches(const PolyMesh& mesh, std::span<const
             floating_[p] = true;
             found = true;
         }
-        if (!found) {
-            std::string valid;
-            for (const Patch& patch : mesh.patches) valid += (valid.empty() ? "" : " ") + patch.name;
+        if (!found)
             throw InputError(options.file, options.floatingPatchesLine,
-                             "floatingPatches: no patch matches " + name + ". Valid patches are: " + valid);
-        }
+                             "floatingPatches: no patch matches " + name + ". Valid patches are: " + patchNameList(mesh));
     }
     // The floating patches that are planar in the reference mesh: their plane is watched.
     for (std::size_t p = 0; p < mesh.patches.size(); ++p) {
