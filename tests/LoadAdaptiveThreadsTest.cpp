@@ -1,6 +1,7 @@
 // Tests of LoadAdaptiveThreads: other processes' load takes rbm's threads down to the cores
 // left; OMP_NUM_THREADS or a single-thread policy switch the adaptation off.
 #include "LoadAdaptiveThreads.hpp"
+#include "SavedThreadSettings.hpp"
 #include "ThreadCount.hpp"
 
 #include <gtest/gtest.h>
@@ -18,26 +19,7 @@
 namespace {
 
 using namespace rbm;
-
-// Saves and restores OMP_NUM_THREADS and the thread count around a test.
-class SavedThreadSettings {
-public:
-    SavedThreadSettings() : before_(threadCount())
-    {
-        if (const char* value = std::getenv("OMP_NUM_THREADS")) saved_ = value, hadValue_ = true;
-    }
-    ~SavedThreadSettings()
-    {
-        if (hadValue_) setenv("OMP_NUM_THREADS", saved_.c_str(), 1);
-        else unsetenv("OMP_NUM_THREADS");
-        setThreadCount(before_);
-    }
-
-private:
-    int before_;
-    std::string saved_;
-    bool hadValue_ = false;
-};
+using rbm::test::SavedThreadSettings;
 
 TEST(LoadAdaptiveThreads, OtherProcessesBusyOnEveryCoreLeaveOneThread)
 {

@@ -19,6 +19,7 @@
 #include "ReducedNewtonSolver.hpp"
 #include "RbmProblem.hpp"
 #include "RbmSolverCases.hpp"
+#include "SavedThreadSettings.hpp"
 #include "ThreadCount.hpp"
 
 #include <gtest/gtest.h>
@@ -350,9 +351,7 @@ TEST(ThreadCount, PolicyIsOmpNumThreadsElseTheCoresElseOnePerRank)
 #ifndef _OPENMP
     GTEST_SKIP() << "built without OpenMP";
 #else
-    const char* saved = std::getenv("OMP_NUM_THREADS");
-    const std::string savedValue = saved ? saved : "";
-    const int before = threadCount();
+    const test::SavedThreadSettings saved;
     const int adaptsBefore = omp_get_dynamic();
     const char* savedDynamic = std::getenv("OMP_DYNAMIC");
     const std::string savedDynamicValue = savedDynamic ? savedDynamic : "";
@@ -377,13 +376,7 @@ TEST(ThreadCount, PolicyIsOmpNumThreadsElseTheCoresElseOnePerRank)
     EXPECT_FALSE(omp_get_dynamic());   // exactly what was asked for
     EXPECT_EQ(threadsInAParallelRegion(), 3);
     EXPECT_NE(describeThreadCount().find("OMP_NUM_THREADS"), std::string::npos);
-    if (saved) {
-        setenv("OMP_NUM_THREADS", savedValue.c_str(), 1);
-    } else {
-        unsetenv("OMP_NUM_THREADS");
-    }
     if (savedDynamic) setenv("OMP_DYNAMIC", savedDynamicValue.c_str(), 1);
-    setThreadCount(before);
     omp_set_dynamic(adaptsBefore);
 #endif
 }
@@ -395,9 +388,7 @@ TEST(ThreadCount, InsideAHostOneThreadUnlessOmpNumThreadsSaysOtherwise)
 #ifndef _OPENMP
     GTEST_SKIP() << "built without OpenMP";
 #else
-    const char* saved = std::getenv("OMP_NUM_THREADS");
-    const std::string savedValue = saved ? saved : "";
-    const int before = threadCount();
+    const test::SavedThreadSettings saved;
     unsetenv("OMP_NUM_THREADS");
     setThreadCount(omp_get_num_procs() + 1);   // as if OpenMP had chosen every core and more
     EXPECT_EQ(applyHostThreadCountPolicy(), 1);
@@ -407,12 +398,6 @@ TEST(ThreadCount, InsideAHostOneThreadUnlessOmpNumThreadsSaysOtherwise)
     setThreadCount(3);   // what OpenMP would have read from OMP_NUM_THREADS=3 at start-up
     EXPECT_EQ(applyHostThreadCountPolicy(), 3);
     EXPECT_EQ(threadsInAParallelRegion(), 3);
-    if (saved) {
-        setenv("OMP_NUM_THREADS", savedValue.c_str(), 1);
-    } else {
-        unsetenv("OMP_NUM_THREADS");
-    }
-    setThreadCount(before);
 #endif
 }
 
