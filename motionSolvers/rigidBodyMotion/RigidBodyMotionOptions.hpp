@@ -8,7 +8,7 @@
 //     {
 //         coupling          coupled;              // coupled | decoupled            (thesis §2.3.2 / §2.3.1)
 //         formulation       nonlinear;            // nonlinear | linearized         (thesis §2.3 / §2.4)
-//         algorithm         newton;               // newton | localGlobal  (coupled nonlinear only)
+//         algorithm         reducedNewton;        // reducedNewton | newton | localGlobal  (coupled nonlinear only)
 //         weighting         inverseDistanceSquared; // uniform | inverseDistance | inverseDistanceSquared
 //         subSteps          auto;                 // auto | N ≥ 1                    (thesis §2.6)
 //         maxSubStepSplits  6;                    // auto: halvings of a sub-step that inverts cells
