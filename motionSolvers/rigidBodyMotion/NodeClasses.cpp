@@ -101,4 +101,19 @@ NodeClasses classifyNodes(const BoundaryDescription& boundary, const PseudoTwoDM
     return result;
 }
 
+PrescribedGroups groupPrescribedNodes(const std::vector<int>& prescribingPatch, int patchCount)
+{
+    const int n = static_cast<int>(prescribingPatch.size());
+    PrescribedGroups groups;
+    groups.offsets.assign(patchCount + 1, 0);
+    for (int node = 0; node < n; ++node)
+        if (prescribingPatch[node] >= 0) ++groups.offsets[prescribingPatch[node] + 1];
+    for (int p = 0; p < patchCount; ++p) groups.offsets[p + 1] += groups.offsets[p];
+    groups.nodes.assign(groups.offsets.back(), 0);
+    std::vector<int> next(groups.offsets.begin(), groups.offsets.end() - 1);
+    for (int node = 0; node < n; ++node)
+        if (prescribingPatch[node] >= 0) groups.nodes[next[prescribingPatch[node]]++] = node;
+    return groups;
+}
+
 } // namespace rbm::motion

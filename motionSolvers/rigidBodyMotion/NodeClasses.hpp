@@ -35,4 +35,13 @@ struct NodeClasses {
 NodeClasses classifyNodes(const BoundaryDescription& boundary, const PseudoTwoDMesh* twoD,
                           const CellNeighbourGraph& graph, UnconstrainedPatches& unconstrained);
 
+// The prescribed nodes grouped by the patch that prescribes them, in node order within a
+// group (CSR: group g is nodes[offsets[g] .. offsets[g+1]) ); held nodes belong to none. A
+// group moves as one body along a sub-step path (BoundaryPath.hpp).
+struct PrescribedGroups {
+    std::vector<int> offsets{0};
+    std::vector<int> nodes;
+};
+PrescribedGroups groupPrescribedNodes(const std::vector<int>& prescribingPatch, int patchCount);
+
 } // namespace rbm::motion

@@ -1,0 +1,33 @@
+#pragma once
+// The solver object of one RBM problem, chosen by the user's options (RigidBodyMotionOptions):
+// the one place where `rigidBodyMotionSolverCoeffs` is translated into the options of the
+// thesis' variants and the coupled nonlinear algorithms:
+//
+//   coupling decoupled                       → DecoupledSolver (linearized or nonlinear model)
+//   coupled, formulation linearized          → CoupledLinearizedSolver
+//   coupled nonlinear, algorithm reducedNewton → ReducedNewtonSolver (the default)
+//   coupled nonlinear, algorithm newton      → CoupledNewtonSolver
+//   coupled nonlinear, algorithm localGlobal → LocalGlobalThenNewton
+//
+// `tolerance` is one thing in all of them: the error allowed in a node's displacement,
+// relative to the cell size. The iterations that move nodes directly (decoupled nonlinear,
+// local/global) stop when no node moves by more than tolerance × its shortest edge; the
+// Newton solvers test the gradient such an error produces, tolerance × (mean w|d| over the
+// edges) × √(unknown nodes). `relativeTolerance` is the gradient's reduction and the Krylov
+// tolerance; `maxIterations` counts nonlinear iterations, per sub-step.
+
+#include "RbmProblem.hpp"
+#include "RigidBodyMotionOptions.hpp"
+
+#include <memory>
+
+namespace rbm::motion {
+
+// local/global without `maxIterations`: enough iterations to reach the thesis' tolerance on
+// its cases (§3.1), few enough that a stall hands over to Newton early.
+inline constexpr int defaultLocalGlobalMaximumIterations = 200;
+
+// The solver for `problem` (which must outlive it).
+std::unique_ptr<RbmSolver> makeRbmSolver(const RbmProblem& problem, const RigidBodyMotionOptions& options);
+
+} // namespace rbm::motion
