@@ -15,7 +15,6 @@
 #include "PolyMeshWriter.hpp"
 #include "PseudoTwoDExtraction.hpp"
 #include "RigidBodyMotionOptions.hpp"
-#include "RigidBodyMotionSolver.hpp"
 #include "StepAssessment.hpp"
 #include "ThesisQuality.hpp"
 #include "ThreadCount.hpp"
@@ -324,7 +323,7 @@ MoveMeshRun::MoveMeshRun(MoveMeshOptions options, std::ostream& out, std::ostrea
     TopologyCheckOptions topologyChecks;
     topologyChecks.checkCellVolumes = false;
     topologyChecks.maxMessages = 5;
-    MeshTopology topology;   // built by the check, kept for the memory estimate, quality checks and VTK
+    MeshTopology topology;   // built by the check, kept for the quality checks and VTK
     if (const auto problems = checkPolyMeshOrdering(mesh_, topologyChecks, topology); !problems.empty()) {
         std::string text = "the mesh breaks OpenFOAM's polyMesh rules (files faces, owner, neighbour):";
         for (const std::string& problem : problems) text += "\n  " + problem;
@@ -332,16 +331,15 @@ MoveMeshRun::MoveMeshRun(MoveMeshOptions options, std::ostream& out, std::ostrea
     }
     dynamicMeshDict_ = io::Dictionary::readFile(caseDirectory_ / "constant" / "dynamicMeshDict");
     const fs::path boundaryFieldPath = io::resolveMaybeCompressed(boundaryFieldFile_);
-    pointDisplacementDictionary_ = io::Dictionary::readFile(boundaryFieldPath);
     boundaryField_ = io::readPointVectorField(boundaryFieldPath, mesh_);
 
-    // Before the solver assembles anything: does the solve fit in the memory there is?
-    computeNodeClasses();
-    checkMemory(topology);
-
-    solver_ = motion::builtinMotionSolvers().create(mesh_, dynamicMeshDict_, &pointDisplacementDictionary_,
+    solver_ = motion::builtinMotionSolvers().create(mesh_, dynamicMeshDict_, &boundaryField_.dictionary,
                                                      caseDirectory_);
-    // The quality checks: the topology above (the memory estimate's, and VTK's below) and the
+    // Before the solver assembles anything: does the solve fit in the memory there is?
+    if (const std::optional<motion::AvailableMemory> available = availableMemory())
+        memoryNote_ = solver_->fitIntoMemory(*available);
+    computeNodeClasses();
+    // The quality checks: the topology above (and VTK's below) and the
     // solver's 2D mesh of a pseudo-3D case, each built once.
     assessor_ = std::make_unique<motion::StepAssessor>(mesh_, std::move(topology), solver_->twoDMesh());
     cells_ = std::make_unique<CellFieldWorkspace>();
@@ -387,131 +385,42 @@ fs::path MoveMeshRun::jsonLogFile() const
 
 void MoveMeshRun::computeNodeClasses()
 {
-    // The same conditions the solver built, read once more for their classes (the
-    // MotionSolver interface does not expose them): prescribed beats sliding beats free.
-    const auto conditions = motion::readPointPatchDisplacements(pointDisplacementDictionary_, mesh_, caseDirectory_);
+    // For the VTK output and the written boundary conditions: the classes the solver uses
+    // (prescribed beats sliding beats free).
+    const motion::BoundaryDescription& boundary = solver_->boundary();
     nodeClasses_.assign(mesh_.points.size(), nodeFree);
     prescribedPatches_.assign(mesh_.patches.size(), 0);
-    for (std::size_t p = 0; p < conditions.size(); ++p) {
-        // A patch both moving and sliding: on a constraint patch (symmetryPlane, symmetry)
-        // OpenFOAM's pointPatchField::New silently replaces the entry's type by the
-        // constraint's, so a motion given to that patch by name would be dropped without a
-        // word. The types that do not prescribe a motion are the free, sliding and 2D ones.
-        static const std::set<std::string> notMoving{"zeroGradient", "calculated", "slip",  "fixedNormalSlip",
-                                                     "symmetry",     "symmetryPlane", "empty", "wedge"};
-        const io::PointPatchFieldEntry& entry = boundaryField_.boundaryField[p];
-        if (conditions[p]->nodeClass() == motion::PatchNodeClass::sliding && entry.type != conditions[p]->type() &&
-            entry.match == io::PointPatchFieldEntry::Match::PatchName && !notMoving.count(entry.type) &&
-            !entry.dictionary.contains("patchType")) {
-            const io::Entry* typeEntry = entry.dictionary.find("type");
-            throw InputError(entry.dictionary.file(), typeEntry ? typeEntry->line() : entry.dictionary.line(),
-                             "patch " + mesh_.patches[p].name + " is a " + mesh_.patches[p].type +
-                                 " patch in constant/polyMesh/boundary, so its points slide on it, but its entry "
-                                 "gives it type " +
-                                 entry.type +
-                                 ", a prescribed motion: a patch cannot both move and slide. Expected type " +
-                                 conditions[p]->type() + " for this patch (or another patch type in the boundary file)");
-        }
+    for (std::size_t p = 0; p < boundary.size(); ++p) {
         std::uint8_t nodeClass = nodeFree;
-        switch (conditions[p]->nodeClass()) {
-        case motion::PatchNodeClass::prescribed:
+        switch (boundary[p].nodeClass) {
+        case motion::BoundaryNodeClass::prescribed:
             nodeClass = nodePrescribed;
             prescribedPatches_[p] = 1;
             break;
-        case motion::PatchNodeClass::sliding: nodeClass = nodeSliding; break;
-        case motion::PatchNodeClass::free:
-        case motion::PatchNodeClass::ignored: continue;
+        case motion::BoundaryNodeClass::sliding: nodeClass = nodeSliding; break;
+        case motion::BoundaryNodeClass::free:
+        case motion::BoundaryNodeClass::ignored: continue;
         }
-        for (const Label point : conditions[p]->meshPoints()) {
+        for (const Label point : boundary[p].meshPoints) {
             std::uint8_t& current = nodeClasses_[static_cast<std::size_t>(point)];
             current = std::max(current, nodeClass);
         }
     }
 }
 
-void MoveMeshRun::checkMemory(const MeshTopology& topology)
+std::optional<motion::AvailableMemory> MoveMeshRun::availableMemory()
 {
-    // Only the RBM solver has a model (MemoryEstimate.hpp); its options are read again by the
-    // solver, which reports their errors.
-    const char* keyword = dynamicMeshDict_.contains("motionSolver") ? "motionSolver" : "solver";
-    if (!dynamicMeshDict_.contains(keyword) ||
-        dynamicMeshDict_.get<std::string>(keyword) != motion::RigidBodyMotionSolver::typeNameString) {
-        return;
+    // What RBM_AVAILABLE_MEMORY_MB says (tests; a machine whose figures mislead), else what the
+    // machine can give.
+    const char* limit = std::getenv("RBM_AVAILABLE_MEMORY_MB");
+    if (!limit || !*limit) return motion::availableMemory();
+    char* end = nullptr;
+    const double mebibytes = std::strtod(limit, &end);
+    if (end == limit || *end != '\0' || !(mebibytes >= 0.0)) {
+        throw InputError("RBM_AVAILABLE_MEMORY_MB", 0,
+                         std::string("expected a number of MiB (the memory rbmMoveMesh may use), found '") + limit + "'");
     }
-    const std::string coefficientsName = std::string(motion::RigidBodyMotionSolver::typeNameString) + "Coeffs";
-    const io::Dictionary* coefficients = dynamicMeshDict_.findDictionary(coefficientsName);
-    const io::Dictionary empty(dynamicMeshDict_.name() + "/" + coefficientsName, dynamicMeshDict_.file(), 0);
-    const motion::RigidBodyMotionOptions rbmOptions = motion::RigidBodyMotionOptions::read(coefficients ? *coefficients : empty);
-
-    std::vector<std::uint8_t> prescribed(nodeClasses_.size());
-    for (std::size_t p = 0; p < prescribed.size(); ++p) prescribed[p] = nodeClasses_[p] == nodePrescribed;
-    const bool twoD = detectPseudoTwoD(mesh_) != PseudoTwoDKind::None;
-    const motion::SolveSize size = motion::estimateSolveSize(topology, prescribed, twoD);
-    const motion::SolveVariant variant = motion::solveVariantOf(rbmOptions);
-    const int systems = motion::linearSystemsAtOnce(rbmOptions);
-    const motion::MemoryEstimate needed = motion::estimateSolveMemory(variant, size, rbmOptions.linearSolver, systems);
-
-    // The memory there is, or what RBM_AVAILABLE_MEMORY_MB says (tests; a machine whose
-    // figures mislead).
-    std::optional<motion::AvailableMemory> available;
-    if (const char* limit = std::getenv("RBM_AVAILABLE_MEMORY_MB"); limit && *limit) {
-        char* end = nullptr;
-        const double mebibytes = std::strtod(limit, &end);
-        if (end == limit || *end != '\0' || !(mebibytes >= 0.0)) {
-            throw InputError("RBM_AVAILABLE_MEMORY_MB", 0,
-                             std::string("expected a number of MiB (the memory rbmMoveMesh may use), found '") + limit +
-                                 "'");
-        }
-        available = motion::AvailableMemory{mebibytes * 1048576.0, "RBM_AVAILABLE_MEMORY_MB"};
-    } else {
-        available = motion::availableMemory();
-    }
-    if (!available || needed.bytes <= available->bytes) return;
-
-    // `automatic` chooses what fits: a 2D linearized factorisation that does not fit becomes
-    // the matrix-free solve (the same minimum, a third of the memory at 10⁶ nodes; slower for
-    // long time series, docs/motionSolver.md "Linear solvers").
-    if (rbmOptions.linearSolver == motion::LinearSolverKind::automatic &&
-        variant == motion::SolveVariant::coupledLinearized && needed.direct) {
-        const motion::MemoryEstimate lean =
-            motion::estimateSolveMemory(variant, size, motion::LinearSolverKind::matrixFree, systems);
-        if (lean.bytes <= available->bytes) {
-            io::Dictionary changed = coefficients ? *coefficients : empty;
-            changed.set(io::Dictionary::parseText("linearSolver matrixFree;", "rbmMoveMesh").lookup("linearSolver"));
-            dynamicMeshDict_.set(io::Entry(coefficientsName, dynamicMeshDict_.file(), changed.line(),
-                                           std::make_unique<io::Dictionary>(std::move(changed))));
-            std::ostringstream note;
-            note << "the direct factorisation would need about " << motion::formatBytes(needed.bytes) << ", only "
-                 << motion::formatBytes(available->bytes) << " is available (" << available->source
-                 << "): solving matrix-free (linearSolver matrixFree, about " << motion::formatBytes(lean.bytes) << ")";
-            memoryNote_ = note.str();
-            return;
-        }
-    }
-
-    std::ostringstream message;
-    message << "the solve needs about " << motion::formatBytes(needed.bytes) << " of memory, but only "
-            << motion::formatBytes(available->bytes) << " is available (" << available->source << "): "
-            << rbmOptions.describe() << ", "
-            << (needed.direct ? "direct factorisation" : needed.matrixFree ? "matrix-free Krylov" : "Krylov + multigrid")
-            << " of " << general(needed.rows, 10) << " unknowns (" << general(size.unknownNodes, 10) << " nodes in "
-            << size.dimension << "D)";
-    if (systems > 1) message << ", " << systems << " systems at once (linearized sub-steps)";
-    message << ".";
-    // The leanest alternative that fits: matrix-free (linearized only), else assembled Krylov.
-    for (const motion::LinearSolverKind alternative : {motion::LinearSolverKind::matrixFree, motion::LinearSolverKind::iterative}) {
-        if (alternative == rbmOptions.linearSolver || needed.matrixFree) break;
-        if (alternative == motion::LinearSolverKind::matrixFree && variant != motion::SolveVariant::coupledLinearized)
-            continue;
-        const motion::MemoryEstimate other = motion::estimateSolveMemory(variant, size, alternative, systems);
-        if (other.bytes < needed.bytes && other.bytes <= available->bytes) {
-            message << " With 'linearSolver " << motion::linearSolverName(alternative) << ";' in " << coefficientsName
-                    << " (constant/dynamicMeshDict) it needs about " << motion::formatBytes(other.bytes) << ".";
-            break;
-        }
-    }
-    message << " Run it on a machine with more memory, or coarsen the mesh.";
-    throw std::runtime_error(message.str());
+    return motion::AvailableMemory{mebibytes * 1048576.0, "RBM_AVAILABLE_MEMORY_MB"};
 }
 
 void MoveMeshRun::checkBoundaryDisplacementIsFinite(double time) const

@@ -40,6 +40,7 @@
 
 #include "ControlDict.hpp"
 #include "LoadAdaptiveThreads.hpp"
+#include "MemoryEstimate.hpp"
 #include "MotionSolver.hpp"
 #include "PointVectorField.hpp"
 #include "PolyMesh.hpp"
@@ -150,13 +151,12 @@ private:
     std::string timeNameOf(double time);
     void writeTime(const std::string& timeName, const std::vector<Vector3>& points);
     void writeVtk(double time, const std::string& timeName, const std::vector<Vector3>& points);
+    // nodeClasses_ and prescribedPatches_ from the solver's boundary description.
     void computeNodeClasses();
-    // Throws std::runtime_error when the solve's estimated memory (MemoryEstimate.hpp) exceeds
-    // what the machine has (or RBM_AVAILABLE_MEMORY_MB): before the solver assembles anything.
-    // Stops a run whose solve would not fit in memory; with `linearSolver automatic`, a 2D
-    // linearized solve whose factorisation would not fit is switched to matrix-free instead
-    // (in dynamicMeshDict_, before the solver reads it) and memoryNote_ says so.
-    void checkMemory(const MeshTopology& topology);
+    // The memory the solve may use: RBM_AVAILABLE_MEMORY_MB (MiB) when set, else what the
+    // machine can give; the solver fits itself into it (MotionSolver::fitIntoMemory) before
+    // it assembles anything. Throws InputError for a malformed RBM_AVAILABLE_MEMORY_MB.
+    static std::optional<motion::AvailableMemory> availableMemory();
     // Throws rbm::InputError naming the patch whose condition gave a NaN or infinite
     // displacement at `time` (called after updateBoundaryConditions).
     void checkBoundaryDisplacementIsFinite(double time) const;
@@ -179,8 +179,7 @@ private:
 
     PolyMesh mesh_;
     io::Dictionary dynamicMeshDict_;
-    std::string memoryNote_;  // printed in the header when checkMemory() changed the solver
-    io::Dictionary pointDisplacementDictionary_;
+    std::string memoryNote_;  // printed in the header when the solver went leaner to fit in memory
     io::PointVectorField boundaryField_;
     std::unique_ptr<motion::MotionSolver> solver_;
     std::vector<std::uint8_t> nodeClasses_;   // per point: 0 free, 1 sliding, 2 prescribed

@@ -41,6 +41,8 @@ MotionSolver::MotionSolver(const PolyMesh& mesh, const io::Dictionary& coefficie
 
 MotionSolver::~MotionSolver() = default;
 
+std::string MotionSolver::fitIntoMemory(const AvailableMemory&) { return {}; }
+
 void MotionSolver::updateBoundaryConditions(double time)
 {
     if (!conditions_)

@@ -40,6 +40,8 @@ struct PseudoTwoDMesh;
 
 namespace rbm::motion {
 
+struct AvailableMemory;   // rigidBodyMotion/MemoryEstimate.hpp
+
 // What one solve() did, for the per-time-step log line.
 struct MotionSolveReport {
     int subStepCount = 0;
@@ -105,6 +107,12 @@ public:
     // After a solve that left inverted cells: which of this solver's options can help for
     // this motion, or why none will (one or more sentences). Empty: no advice of its own.
     virtual std::string invertedStepAdvice() const { return {}; }
+
+    // Before the first solve: make the solve fit in `available` memory, or stop. A solver
+    // with a memory model may choose a leaner linear solver of its own (the returned note
+    // says so, for the log; empty: nothing changed) and throws std::runtime_error saying what
+    // it needs when nothing fits. Without a model: nothing to do.
+    virtual std::string fitIntoMemory(const AvailableMemory& available);
 
     // points0 + pointDisplacement.
     std::vector<Vector3> curPoints() const;

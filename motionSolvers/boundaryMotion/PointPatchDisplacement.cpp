@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 
@@ -435,6 +436,32 @@ std::vector<Vector3> readPatchVectorField(const io::Dictionary& patchDictionary,
     return values;
 }
 
+namespace {
+
+// A patch both moving and sliding: on a constraint patch (symmetryPlane, symmetry) OpenFOAM's
+// pointPatchField::New silently replaces the entry's type by the constraint's, so a motion
+// given to that patch by name would be dropped without a word. The types that do not
+// prescribe a motion are the free, sliding and 2D ones; an entry matched by a group or a
+// regular expression, or with a `patchType`, is not addressed to this patch alone.
+void checkNotBothMovingAndSliding(const io::PointPatchFieldEntry& entry, const PointPatchDisplacement& condition,
+                                  const Patch& patch)
+{
+    static const std::set<std::string> notMoving{"zeroGradient", "calculated", "slip",  "fixedNormalSlip",
+                                                 "symmetry",     "symmetryPlane", "empty", "wedge"};
+    if (condition.nodeClass() != PatchNodeClass::sliding || entry.type == condition.type() ||
+        entry.match != io::PointPatchFieldEntry::Match::PatchName || notMoving.count(entry.type) ||
+        entry.dictionary.contains("patchType"))
+        return;
+    const io::Entry* typeEntry = entry.dictionary.find("type");
+    throw InputError(entry.dictionary.file(), typeEntry ? typeEntry->line() : entry.dictionary.line(),
+                     "patch " + patch.name + " is a " + patch.type +
+                         " patch in constant/polyMesh/boundary, so its points slide on it, but its entry gives it type " +
+                         entry.type + ", a prescribed motion: a patch cannot both move and slide. Expected type " +
+                         condition.type() + " for this patch (or another patch type in the boundary file)");
+}
+
+} // namespace
+
 std::vector<std::unique_ptr<PointPatchDisplacement>> makePointPatchDisplacements(
     std::span<const io::PointPatchFieldEntry> entries, const PolyMesh& mesh, const io::FoamFileHeader& header,
     const std::string& file, const std::filesystem::path& caseDirectory, std::span<const Vector3> points0,
@@ -449,6 +476,7 @@ std::vector<std::unique_ptr<PointPatchDisplacement>> makePointPatchDisplacements
         const PointPatchContext context = PointPatchContext::forPatch(mesh, static_cast<Label>(patchIndex), points0,
                                                                       caseDirectory, header, file);
         conditions.push_back(registry.create(entries[patchIndex].dictionary, context));
+        checkNotBothMovingAndSliding(entries[patchIndex], *conditions.back(), mesh.patches[patchIndex]);
     }
     return conditions;
 }

@@ -7,6 +7,7 @@
 #include "InvertedCellCounter.hpp"
 #include "InvertedStepAdvice.hpp"
 #include "LocalGlobalSolver.hpp"  // rotationParameters
+#include "MemoryFit.hpp"
 #include "NodeClasses.hpp"
 #include "PetscSupport.hpp"
 #include "PseudoTwoDExtraction.hpp"
@@ -450,6 +451,17 @@ std::string RigidBodyMotionSolver::invertedStepAdvice() const
         squeeze = impl.smallestCellSizeRatio();
     }
     return motion::invertedStepAdvice(impl.options, angleDegrees, squeeze);
+}
+
+std::string RigidBodyMotionSolver::fitIntoMemory(const AvailableMemory& available)
+{
+    Impl& impl = *impl_;
+    const MemoryFit fit = fitSolveIntoMemory(impl.options, solveSizeOf(*impl.problem), available);
+    if (fit.linearSolver) {
+        impl.options.linearSolver = *fit.linearSolver;
+        impl.baseSolver.reset();
+    }
+    return fit.note;
 }
 
 MotionSolveReport RigidBodyMotionSolver::solve()

@@ -66,6 +66,8 @@ public:
     // sub-steps, stiffening, untangling), or, with the robust choices in effect, what the
     // motion does that none of them can take (a squeeze, a rotation) and what can.
     std::string invertedStepAdvice() const override;
+    // MemoryFit.hpp: `linearSolver automatic` may go matrix-free; throws when nothing fits.
+    std::string fitIntoMemory(const AvailableMemory& available) override;
 
     const RigidBodyMotionOptions& options() const;
     // 2 for pseudo-3D meshes (solved on the front plane), 3 otherwise.
