@@ -38,7 +38,7 @@ namespace rbm::motion {
 class RbmProblem;
 struct RigidBodyMotionOptions;
 
-// The RBM variants as the solver objects they create (RigidBodyMotionSolver::Impl::makeSolver).
+// The RBM variants as the solver objects they create (makeRbmSolver, RbmSolverSelection.hpp).
 enum class SolveVariant {
     decoupledNonlinear,   // DecoupledSolver, nonlinear model
     decoupledLinearized,  // DecoupledSolver, linearized model
