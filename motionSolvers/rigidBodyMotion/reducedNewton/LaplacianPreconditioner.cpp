@@ -12,6 +12,25 @@
 
 namespace rbm::motion {
 
+namespace {
+
+// Whether the user chose K's solver or package through PETSc's options (-rbm_reduced_…, -rbm_…
+// or global); another living solver's copies and defaults under -rbm_reduced_ are not a choice.
+bool userChoseLaplacianSolver()
+{
+    bool chosen = false;
+    for (const char* prefix : {"rbm_reduced_", "rbm_", static_cast<const char*>(nullptr)})
+        for (const char* name : {"-ksp_type", "-pc_type", "-pc_factor_mat_solver_type"}) {
+            PetscBool given = PETSC_FALSE;
+            RBM_CHECK_PETSC(PetscOptionsHasName(nullptr, prefix, name, &given));
+            const std::string fullName = "-" + std::string(prefix ? prefix : "") + std::string(name + 1);
+            chosen = chosen || (given == PETSC_TRUE && !InheritedOptions::isHeldCopy(fullName));
+        }
+    return chosen;
+}
+
+} // namespace
+
 LaplacianPreconditioner::LaplacianPreconditioner(const RbmProblem& problem, LinearSolverKind linearSolver,
                                                  double relativeTolerance)
     : problem_(problem), relativeTolerance_(relativeTolerance)
@@ -21,58 +40,37 @@ LaplacianPreconditioner::LaplacianPreconditioner(const RbmProblem& problem, Line
     // -rbm_reduced_inner_solve: K⁻¹ by CG + GAMG to the relative tolerance instead of one cycle.
     PetscBool innerSolve = PETSC_FALSE;
     RBM_CHECK_PETSC(PetscOptionsHasName(nullptr, "rbm_reduced_", "-inner_solve", &innerSolve));
-    const BlockPattern& pattern = problem_.blockPattern();
     laplacian_ = coupledDisplacementLaplacian(problem_);
     vectorSystem_ = problem_.hasSlidingNodes();
-    const int blockSize = vectorSystem_ ? dim : 1;
     PetscMPIInt ranks = 1;
     RBM_CHECK_PETSC(MPI_Comm_size(solverCommunicator(), &ranks));
-    // rbm's own factorisation and back-substitution wherever K would be factorised on one rank,
-    // unless the user chose K's solver or package through PETSc's options (-rbm_reduced_…,
-    // -rbm_… or global): then PETSc's KSP, as configured. Its supernodal rows with
-    // single-precision entries (SparseCholesky.hpp) halve the memory traffic of the
-    // back-substitutions, most of this solver's work; K⁻¹ is only CG's preconditioner, so the
-    // single precision costs no accuracy of the minimum.
-    bool userChoseSolver = false;
-    for (const char* prefix : {"rbm_reduced_", "rbm_", static_cast<const char*>(nullptr)})
-        for (const char* name : {"-ksp_type", "-pc_type", "-pc_factor_mat_solver_type"}) {
-            PetscBool given = PETSC_FALSE;
-            RBM_CHECK_PETSC(PetscOptionsHasName(nullptr, prefix, name, &given));
-            // (Another living solver's copies and defaults under -rbm_reduced_ are not a choice.)
-            const std::string fullName = "-" + std::string(prefix ? prefix : "") + std::string(name + 1);
-            userChoseSolver = userChoseSolver || (given == PETSC_TRUE && !InheritedOptions::isHeldCopy(fullName));
-        }
     const bool factorised = linearSolver == LinearSolverKind::direct ||
                             (linearSolver == LinearSolverKind::automatic &&
                              (dim == 2 || problem_.unknownNodeCount() <= directSolverRowLimit));
-    if (!vectorSystem_ && ranks == 1 && factorised && !userChoseSolver && SparseCholesky::available()) {
-        cholesky_ = std::make_unique<SparseCholesky>(problem_.unknownNodeCount(), pattern.rowOffsets, pattern.columns,
-                                                     laplacian_, FactorPrecision::single);
+    // rbm's own factorisation and back-substitution wherever K would be factorised on one rank,
+    // unless the user chose K's solver through PETSc's options: then PETSc's KSP, as configured.
+    if (ranks == 1 && factorised && !userChoseLaplacianSolver() && SparseCholesky::available()) {
+        const BlockPattern& pattern = problem_.blockPattern();
+        if (!vectorSystem_) {
+            // Supernodal rows with single-precision entries (SparseCholesky.hpp) halve the
+            // memory traffic of the back-substitutions, most of this solver's work; K⁻¹ is only
+            // CG's preconditioner, so the single precision costs no accuracy of the minimum.
+            cholesky_ = std::make_unique<SparseCholesky>(problem_.unknownNodeCount(), pattern.rowOffsets,
+                                                         pattern.columns, laplacian_, FactorPrecision::single);
+        } else {
+            // Sliding nodes: P (K ⊗ I) P in the sliding frames, factorised once
+            // (ProjectedLaplacianFactor.hpp) in double precision: its solve is the start's exact
+            // harmonic extension, as the multifrontal solve of the vector system it replaces was.
+            projectedCholesky_ =
+                std::make_unique<ProjectedLaplacianFactor>(problem_, laplacian_, FactorPrecision::double_);
+        }
         return;
     }
-    // Sliding nodes, one rank, factorised: P (K ⊗ I) P in the sliding frames, factorised once
-    // (ProjectedLaplacianFactor.hpp) in double precision: its solve is the start's exact
-    // harmonic extension, as the multifrontal solve of the vector system it replaces was.
-    if (vectorSystem_ && ranks == 1 && factorised && !userChoseSolver && SparseCholesky::available()) {
-        projectedCholesky_ = std::make_unique<ProjectedLaplacianFactor>(problem_, laplacian_, FactorPrecision::double_);
-        return;
-    }
-#if defined(PETSC_HAVE_SUITESPARSE)
-    // One rank, scalar K: CHOLMOD's supernodal Cholesky, whose back-substitution does far fewer
-    // flops than MUMPS's on these graph Laplacians (the back-substitutions are most of this
-    // solver's work).
-    if (!vectorSystem_ && ranks == 1) {
-        laplacianOptions_ = std::make_unique<InheritedOptions>("reduced");
-        laplacianOptions_->addDefault("pc_factor_mat_solver_type", "cholmod");
-    }
-#endif
+    choosePetscDefaults(ranks, factorised);
     // 3D on one rank with K solved iteratively: ONE multigrid hierarchy of K, set up here on
     // laplacian_ itself (PETSc keeps no copy of K) and applied as one V-cycle to the three
     // components at once (ThreeVectorMultigrid.hpp, apply). Another preconditioner chosen
     // by options: the BlockSystemSolver below.
-    const bool laplacianIterative =
-        linearSolver == LinearSolverKind::iterative || linearSolver == LinearSolverKind::matrixFree ||
-        (linearSolver == LinearSolverKind::automatic && problem_.unknownNodeCount() > directSolverRowLimit);
     // With sliding nodes the same cycle of the scalar K, between projections onto the sliding
     // planes, preconditions CG on the projected K ⊗ I, solved to laplacianRelativeTolerance
     // (projectedCycleSolve): far fewer iterations than PETSc's CG + GAMG on the projected
@@ -83,6 +81,31 @@ LaplacianPreconditioner::LaplacianPreconditioner(const RbmProblem& problem, Line
     // when K's factorisation does not fit in memory) K ⊗ I is solved the same way, by CG + the
     // cycle to the relative tolerance: one cycle alone is no K⁻¹ on a boundary-layer mesh (the
     // start's energy explodes and Newton stalls).
+    const bool laplacianIterative =
+        linearSolver == LinearSolverKind::iterative || linearSolver == LinearSolverKind::matrixFree ||
+        (linearSolver == LinearSolverKind::automatic && problem_.unknownNodeCount() > directSolverRowLimit);
+    if (laplacianIterative && !innerSolve) {
+        const BlockPattern& pattern = problem_.blockPattern();
+        threeVectorCycle_ = ThreeVectorMultigrid::build(pattern.rowOffsets, pattern.columns, laplacian_, "reduced");
+        if (threeVectorCycle_) {
+            laplacianByCycle_ = true;
+            return;
+        }
+    }
+    buildPetscSystem(linearSolver, ranks, innerSolve);
+}
+
+void LaplacianPreconditioner::choosePetscDefaults([[maybe_unused]] int ranks, [[maybe_unused]] bool factorised)
+{
+#if defined(PETSC_HAVE_SUITESPARSE)
+    // One rank, scalar K: CHOLMOD's supernodal Cholesky, whose back-substitution does far fewer
+    // flops than MUMPS's on these graph Laplacians (the back-substitutions are most of this
+    // solver's work).
+    if (!vectorSystem_ && ranks == 1) {
+        laplacianOptions_ = std::make_unique<InheritedOptions>("reduced");
+        laplacianOptions_->addDefault("pc_factor_mat_solver_type", "cholmod");
+    }
+#endif
 #if defined(PETSC_HAVE_HYPRE)
     // 2D, K solved iteratively on several ranks (rbm's own cycle is one rank's): PETSc's CG with
     // hypre's BoomerAMG by default instead of GAMG. K is a weighted graph Laplacian, an
@@ -91,21 +114,20 @@ LaplacianPreconditioner::LaplacianPreconditioner(const RbmProblem& problem, Line
     // aggregation does not converge (DIVERGED_LINEAR_SOLVE, also with a drop threshold). In 3D
     // (one cycle as K⁻¹) GAMG stays: there it was as fast or faster (docs/motionSolver.md,
     // "Reduced Newton"). -rbm_reduced_pc_type gamg brings GAMG back.
-    if (ranks > 1 && !factorised && dim == 2) {
+    if (ranks > 1 && !factorised && problem_.dimension() == 2) {
         if (!laplacianOptions_) laplacianOptions_ = std::make_unique<InheritedOptions>("reduced");
         laplacianOptions_->addDefault("pc_type", "hypre");
     }
 #endif
-    if (laplacianIterative) {
-        if (!innerSolve) threeVectorCycle_ = ThreeVectorMultigrid::build(pattern.rowOffsets, pattern.columns, laplacian_, "reduced");
-        if (threeVectorCycle_) {
-            laplacianByCycle_ = true;
-            return;
-        }
-    }
-    system_ = std::make_unique<BlockSystemSolver>(pattern.rowOffsets, pattern.columns, blockSize,
+}
+
+void LaplacianPreconditioner::buildPetscSystem(LinearSolverKind linearSolver, int ranks, bool innerSolve)
+{
+    const int dim = problem_.dimension();
+    const BlockPattern& pattern = problem_.blockPattern();
+    system_ = std::make_unique<BlockSystemSolver>(pattern.rowOffsets, pattern.columns, vectorSystem_ ? dim : 1,
                                                   MatrixSymmetry::symmetricPositiveDefinite, linearSolver, dim,
-                                                  relativeTolerance, "reduced");
+                                                  relativeTolerance_, "reduced");
     if (!vectorSystem_) {
         system_->setMatrix(laplacian_);
     } else {

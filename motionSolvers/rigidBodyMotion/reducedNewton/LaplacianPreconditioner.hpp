@@ -65,6 +65,12 @@ public:
     const std::vector<double>& laplacian() const { return laplacian_; }
 
 private:
+    // PETSc's defaults for K's solver where rbm's own factorisation is not used (CHOLMOD on
+    // one rank, BoomerAMG for 2D on several).
+    void choosePetscDefaults(int ranks, bool factorised);
+    // K (or, with sliding nodes, the projected K ⊗ I) in PETSc's solver: the way not taken by
+    // rbm's own factorisations and multigrid cycle.
+    void buildPetscSystem(LinearSolverKind linearSolver, int ranks, bool innerSolve);
     // z = (P (K ⊗ I) P)⁻¹ P r by CG preconditioned by the cycle of the scalar K between
     // projections, to relativeTolerance. False if CG failed.
     bool projectedCycleSolve(std::span<const double> r, std::span<double> z, double relativeTolerance);

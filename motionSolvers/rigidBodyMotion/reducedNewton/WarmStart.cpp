@@ -144,116 +144,133 @@ void WarmStart::keepTurnedStartIfLower(std::span<const Vector3> prescribedDispla
     }
 }
 
-WarmStart::Start WarmStart::start(std::span<const Vector3> prescribedDisplacement, const RbmState* initialGuess,
-                                  const CompactUnknowns& unknowns)
+WarmStart::Predicted WarmStart::predictFromGuess(std::span<const Vector3> prescribedDisplacement,
+                                                 const RbmState& initialGuess, std::span<const double> offset)
 {
     const int n = problem_.nodeCount();
     const int m = problem_.unknownNodeCount();
     const int dim = problem_.dimension();
     const std::size_t size = static_cast<std::size_t>(m) * dim;
     const std::vector<int>& nodes = problem_.unknownNodes();
-    const std::vector<double>& offset = unknowns.slidingOffset();
     auto flat = [dim](Vector3 v) {
         if (dim == 2) v.z = 0.0;
         return v;
     };
+    Predicted result;
+    result.start.assign(size, 0.0);
+    std::vector<double> correction(size);
+    // When the guess is this solver's own last result and the one before is known, a secant
+    // step along the boundary's path first: G = u_n + α (u_n − u_{n−1}), α fitting the
+    // prescribed change best (along a smooth motion the start is then off by the second
+    // difference of the motion instead of the first). Then the boundary mismatch moved in
+    // harmonically: start = G + K⁻¹ (b(new) − b(G)).
+    problem_.checkNodeArray(initialGuess.displacement, "initial guess displacement");
+    std::vector<Vector3> base(initialGuess.displacement.begin(), initialGuess.displacement.end());
+    result.chained = solutionHistory_.size() >= 2 && solutionHistory_[0] == base;
+    if (result.chained) extrapolateAlongHistory(prescribedDisplacement, base);
+    // On the prescribed nodes: the predictor's miss, the sizes of the new boundary, the
+    // predictor's and the guess's (the two tests to rounding below).
+    double missSquared = 0.0, restSquared = 0.0, baseSquared = 0.0, lastSquared = 0.0;
+    for (int node = 0; node < n; ++node) {
+        if (problem_.isUnknown(node)) continue;
+        missSquared += normSquared(flat(prescribedDisplacement[node]) - flat(base[node]));
+        restSquared += normSquared(flat(prescribedDisplacement[node]));
+        baseSquared += normSquared(flat(base[node]));
+        lastSquared += normSquared(flat(initialGuess.displacement[node]));
+    }
+    // The predictor meets the prescribed boundary to rounding (a turning point of the motion
+    // back to a boundary met before, whose kept result it reproduces; a boundary back at
+    // rest): the start is usually the minimum already (the driver's displacement test comes first).
+    result.boundaryReproduced =
+        std::isfinite(restSquared + baseSquared) &&
+        std::sqrt(missSquared) <= HarmonicChangeBasis::roundingChangeShare * std::sqrt(restSquared + baseSquared);
+    std::vector<double> baseOffset(size);
+    problem_.slidingOffset(base, baseOffset, dim);
+    // K⁻¹ of the change is linear in the boundary's change (without sliding nodes): taken
+    // from the extensions of the changes met before where the new one is their combination
+    // (HarmonicChangeBasis), solved otherwise.
+    std::vector<double> boundaryChange;
+    if (!harmonicBasis_.correctionFromBasis(prescribedDisplacement, base, boundaryChange, correction)) {
+        std::vector<double> change = boundaryRightHandSide(prescribedDisplacement, offset);
+        const std::vector<double> previous = boundaryRightHandSide(base, baseOffset);
+        for (std::size_t k = 0; k < size; ++k) change[k] -= previous[k];
+        if (!preconditioner_.apply(change, correction)) result.failure = "DIVERGED_LINEAR_SOLVE (harmonic predictor)";
+        else harmonicBasis_.remember(std::move(boundaryChange), correction);
+    }
+    for (int a = 0; a < m; ++a) {
+        const Vector3 guess = flat(base[nodes[a]]);
+        for (int q = 0; q < dim; ++q) {
+            const std::size_t k = static_cast<std::size_t>(a) * dim + q;
+            result.start[k] = guess[q] + correction[k] + (offset[k] - baseOffset[k]);
+        }
+    }
+    // A boundary back at rest to rounding (a pitching motion about its rest position, every
+    // half period): the reference mesh, no displacement, is its exact minimum, and the
+    // start. The predictor's start is kept: the chain's correction is still its miss (the
+    // subspace step of the next steps learns from it).
+    if (result.failure.empty() && std::isfinite(lastSquared) &&
+        std::sqrt(restSquared) <= HarmonicChangeBasis::roundingChangeShare * std::sqrt(lastSquared)) {
+        result.predictorStart = result.start;
+        result.start.assign(offset.begin(), offset.end());  // the sliding nodes' normal part (zero at rest, to rounding)
+        result.boundaryReproduced = true;
+    }
+    return result;
+}
+
+WarmStart::Predicted WarmStart::harmonicStart(std::span<const Vector3> prescribedDisplacement,
+                                              std::span<const double> offset)
+{
+    // Cold start: the harmonic interpolation of the boundary, c n + P K⁻¹ P b.
+    Predicted result;
+    const std::size_t size = offset.size();
+    std::vector<double> correction(size);
+    if (!preconditioner_.apply(boundaryRightHandSide(prescribedDisplacement, offset), correction))
+        result.failure = "DIVERGED_LINEAR_SOLVE (harmonic start)";
+    result.start.resize(size);
+    for (std::size_t k = 0; k < size; ++k) result.start[k] = offset[k] + correction[k];
+    return result;
+}
+
+WarmStart::Start WarmStart::start(std::span<const Vector3> prescribedDisplacement, const RbmState* initialGuess,
+                                  const CompactUnknowns& unknowns)
+{
+    const int n = problem_.nodeCount();
+    const int dim = problem_.dimension();
+    const std::vector<double>& offset = unknowns.slidingOffset();
     Start result;
     std::vector<Vector3>& u = result.point.displacement;
     u.assign(static_cast<std::size_t>(n), Vector3{});
-    for (int node = 0; node < n; ++node)
-        if (!problem_.isUnknown(node)) u[node] = flat(prescribedDisplacement[node]);
-    std::vector<double> start(size), correction(size);
-    std::vector<double> predictorStart;  // the predictor's start where the start is another
-    std::string failure;
-    bool chained = false;  // warm-started from this solver's own last result, with its history
-    // The predictor meets the prescribed boundary to rounding (a turning point of the motion
-    // back to a boundary met before, whose kept result it reproduces; a boundary back at rest):
-    // the start is usually the minimum already (the driver's displacement test comes first).
-    bool boundaryReproduced = false;
-    if (initialGuess) {
-        // Warm start. When the guess is this solver's own last result and the one before is
-        // known, a secant step along the boundary's path first: G = u_n + α (u_n − u_{n−1}),
-        // α fitting the prescribed change best (along a smooth motion the start is then off by
-        // the second difference of the motion instead of the first). Then the boundary
-        // mismatch moved in harmonically: start = G + K⁻¹ (b(new) − b(G)).
-        problem_.checkNodeArray(initialGuess->displacement, "initial guess displacement");
-        std::vector<Vector3> base(initialGuess->displacement.begin(), initialGuess->displacement.end());
-        chained = solutionHistory_.size() >= 2 && solutionHistory_[0] == base;
-        if (chained) extrapolateAlongHistory(prescribedDisplacement, base);
-        // On the prescribed nodes: the predictor's miss, the sizes of the new boundary, the
-        // predictor's and the guess's (the two tests to rounding below).
-        double missSquared = 0.0, restSquared = 0.0, baseSquared = 0.0, lastSquared = 0.0;
-        for (int node = 0; node < n; ++node) {
-            if (problem_.isUnknown(node)) continue;
-            missSquared += normSquared(flat(prescribedDisplacement[node]) - flat(base[node]));
-            restSquared += normSquared(flat(prescribedDisplacement[node]));
-            baseSquared += normSquared(flat(base[node]));
-            lastSquared += normSquared(flat(initialGuess->displacement[node]));
-        }
-        boundaryReproduced = std::isfinite(restSquared + baseSquared) &&
-                             std::sqrt(missSquared) <= HarmonicChangeBasis::roundingChangeShare * std::sqrt(restSquared + baseSquared);
-        std::vector<double> baseOffset(size);
-        problem_.slidingOffset(base, baseOffset, dim);
-        // K⁻¹ of the change is linear in the boundary's change (without sliding nodes): taken
-        // from the extensions of the changes met before where the new one is their combination
-        // (HarmonicChangeBasis), solved otherwise.
-        std::vector<double> boundaryChange;
-        if (!harmonicBasis_.correctionFromBasis(prescribedDisplacement, base, boundaryChange, correction)) {
-            std::vector<double> change = boundaryRightHandSide(prescribedDisplacement, offset);
-            const std::vector<double> previous = boundaryRightHandSide(base, baseOffset);
-            for (std::size_t k = 0; k < size; ++k) change[k] -= previous[k];
-            if (!preconditioner_.apply(change, correction)) failure = "DIVERGED_LINEAR_SOLVE (harmonic predictor)";
-            else harmonicBasis_.remember(std::move(boundaryChange), correction);
-        }
-        for (int a = 0; a < m; ++a) {
-            const Vector3 guess = flat(base[nodes[a]]);
-            for (int q = 0; q < dim; ++q) {
-                const std::size_t k = static_cast<std::size_t>(a) * dim + q;
-                start[k] = guess[q] + correction[k] + (offset[k] - baseOffset[k]);
-            }
-        }
-        // A boundary back at rest to rounding (a pitching motion about its rest position, every
-        // half period): the reference mesh, no displacement, is its exact minimum, and the
-        // start. The predictor's start is kept: the chain's correction is still its miss (the
-        // subspace step of the next steps learns from it).
-        if (failure.empty() && std::isfinite(lastSquared) &&
-            std::sqrt(restSquared) <= HarmonicChangeBasis::roundingChangeShare * std::sqrt(lastSquared)) {
-            predictorStart = start;
-            start = offset;  // the sliding nodes' normal part (zero at rest, to rounding)
-            boundaryReproduced = true;
-        }
-    } else {
-        // Cold start: the harmonic interpolation of the boundary, c n + P K⁻¹ P b.
-        if (!preconditioner_.apply(boundaryRightHandSide(prescribedDisplacement, offset), correction))
-            failure = "DIVERGED_LINEAR_SOLVE (harmonic start)";
-        for (std::size_t k = 0; k < size; ++k) start[k] = offset[k] + correction[k];
+    for (int node = 0; node < n; ++node) {
+        if (problem_.isUnknown(node)) continue;
+        u[node] = prescribedDisplacement[node];
+        if (dim == 2) u[node].z = 0.0;
     }
-    unknowns.set(u, start);
+    const Predicted predicted = initialGuess ? predictFromGuess(prescribedDisplacement, *initialGuess, offset)
+                                             : harmonicStart(prescribedDisplacement, offset);
+    unknowns.set(u, predicted.start);
     std::vector<Matrix3>& rotations = result.point.rotations;
-    double& energy = result.point.energy;
-    energy = energy_.fitAndEnergy(u, rotations);
-    if ((!initialGuess || !chained) && failure.empty() && options_.turnedStart)
+    result.point.energy = energy_.fitAndEnergy(u, rotations);
+    if ((!initialGuess || !predicted.chained) && predicted.failure.empty() && options_.turnedStart)
         keepTurnedStartIfLower(prescribedDisplacement, initialGuess, result.point);
     // The start actually taken (after the turned one's choice), or the predictor's where the
     // reference mesh was taken instead: the step's Newton correction is the result minus it
     // (the subspace step of later steps).
-    std::vector<double> predicted = unknowns.compact(u);
-    if (!predictorStart.empty()) {
+    result.predicted = unknowns.compact(u);
+    if (!predicted.predictorStart.empty()) {
         trial_ = u;
-        unknowns.set(trial_, predictorStart);
-        predicted = unknowns.compact(trial_);
+        unknowns.set(trial_, predicted.predictorStart);
+        result.predicted = unknowns.compact(trial_);
     }
-    result.point.gradient.assign(size, 0.0);
+    result.point.gradient.assign(offset.size(), 0.0);
     energy_.gradient(u, rotations, result.point.gradient);
     result.point.gradientNorm = euclideanNorm(result.point.gradient);
-    result.predicted = std::move(predicted);
-    result.chained = chained;
-    result.boundaryReproduced = boundaryReproduced;
-    result.failure = failure;
+    result.chained = predicted.chained;
+    result.boundaryReproduced = predicted.boundaryReproduced;
+    result.failure = predicted.failure;
     // The subspace step: along a chain, in the span of the chain's own corrections (the
     // secant predictor's misses); a warm start outside a chain (the second after a restart,
     // whose first kept no history), in that of the last solve's (the miss of its turned start).
-    result.subspaceStepDue = initialGuess && !recentCorrections_.empty() && chained == correctionsFromChain_;
+    result.subspaceStepDue = initialGuess && !recentCorrections_.empty() && predicted.chained == correctionsFromChain_;
     return result;
 }
 

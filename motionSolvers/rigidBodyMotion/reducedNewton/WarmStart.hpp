@@ -81,6 +81,20 @@ public:
     const HarmonicChangeBasis& harmonicBasis() const { return harmonicBasis_; }
 
 private:
+    // The start's unknowns (compact), before the turned start's choice.
+    struct Predicted {
+        std::vector<double> start;
+        std::vector<double> predictorStart;  // the predictor's, where the reference mesh was taken instead
+        std::string failure;                 // empty: the linear solves converged
+        bool chained = false;                // from this solver's own last result, with its history
+        bool boundaryReproduced = false;     // the predictor meets the prescribed boundary to rounding
+    };
+    // Warm: the secant along the history (when chained), then the boundary's mismatch moved
+    // in harmonically; the reference mesh where the boundary is back at rest.
+    Predicted predictFromGuess(std::span<const Vector3> prescribedDisplacement, const RbmState& initialGuess,
+                               std::span<const double> offset);
+    // Cold: the harmonic interpolation of the boundary.
+    Predicted harmonicStart(std::span<const Vector3> prescribedDisplacement, std::span<const double> offset);
     // b(values) = Σ_{j prescribed} w ū_j − (K c)_k per unknown node k (compact).
     std::vector<double> boundaryRightHandSide(std::span<const Vector3> values, std::span<const double> slidingOffset);
     // Along a chain: base (the last result) ← the secant predictor, or past a turning point the
