@@ -1,7 +1,7 @@
 #pragma once
 // An advisory lock on an OpenFOAM case folder for the length of a run that writes into it,
 // so that a second rbmMoveMesh on the same case is refused before it reads or writes
-// anything, instead of both writing the same files (before: one of them died with
+// anything, instead of both writing the same files (where one of them can die with
 // "filesystem error: cannot rename: No such file or directory [./VTK/...vtu.tmp]").
 //
 // The lock is flock(LOCK_EX) on the case folder itself (an O_RDONLY descriptor of the folder):

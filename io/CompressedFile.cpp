@@ -103,14 +103,14 @@ std::string gunzip(const std::string& compressed, const fs::path& path)
 // (gzwrite does not keep errno).
 //
 // Up to `oneShotLimit` bytes: libdeflate at level 1, the whole file compressed at once into
-// one buffer (contents + 0.1 %) and written. Measured on the 40k-node airfoil (81 280 points,
-// 2026-11-25): binary points 1.95 MB in 0.0115 s (zlib level 1: 0.027 s), file 1.8 % larger;
-// the ascii pointDisplacement 3.17 MB in 0.013 s (zlib: 0.025 s), file 6 % smaller.
+// one buffer (contents + 0.1 %) and written. libdeflate compresses a whole buffer in about
+// half of zlib's time at the same level, for files of about the same size; the price is the
+// buffer, a second copy of the file in memory.
 // Beyond it (meshes of 10^7 points and more): zlib level 1, compressed piece by piece into a
 // 128 KiB buffer that goes to the file whenever it is full, without a second copy of the data
 // in memory. Level 1, not OpenFOAM's default 6: any level reads back the same, and level 6
-// took 0.19 s (ascii pointDisplacement) and 0.075 s (binary points) on the airfoil, for files
-// 10 % and 0.7 % smaller.
+// takes several times as long for files at most about a tenth smaller (writing's share of a
+// run: docs/rbmMoveMesh.md, "Where a one-step run's time goes").
 void writeGzipStreaming(const fs::path& target, std::string_view contents);
 
 void writeGzip(const fs::path& target, std::string_view contents, std::size_t oneShotLimit)

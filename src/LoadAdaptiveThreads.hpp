@@ -4,12 +4,12 @@
 // cores left (at least 1, at most the policy's count, ThreadCount.hpp).
 //
 // Why: a team of OpenMP threads meets at a barrier after every loop, so one thread that waits
-// for a busy core holds up the others; with both cores of a 2-core machine busy with other
-// work, two threads made a 20-step pitching series 4-6 times slower in wall time than one.
+// for a busy core holds up the others; with every core busy with other work, two threads make
+// a time series several times slower in wall time than one (docs/rbmMoveMesh.md, "Threads").
 // The measure is the machine's busy time (/proc/stat) minus this process's own CPU time
 // (getrusage) over the last step: this process's own threads are not counted as load, so a
-// long run on a dedicated machine keeps every core (the reason an adaptation to the load
-// average was dropped before). Results do not depend on the thread count.
+// long run on a dedicated machine keeps every core (a rule on the load average would count
+// them as load and give cores away). Results do not depend on the thread count.
 //
 // Only where the policy chose more than one thread and OMP_NUM_THREADS is unset (a user who
 // sets it gets exactly that); elsewhere, and without /proc/stat, it changes nothing.

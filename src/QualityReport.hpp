@@ -103,8 +103,8 @@ public:
     bool isTwoD() const { return twoD_ != nullptr; }
     // Gives back the per-face and per-cell work arrays (the geometry among them; the next
     // geometryAt() computes it again). Between the time steps of a run they would sit beside
-    // the motion solver's own arrays: 230 MB at 10⁶ hexahedra, which set the peak of the
-    // twisted cube's run.
+    // the motion solver's own arrays: 230 MB at 10⁶ hexahedra, which would raise the peak of
+    // a large 3D run.
     void releaseWorkspaces();
 
 private:

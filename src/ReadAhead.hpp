@@ -4,10 +4,10 @@
 // Why: rbm's per-step passes (the back-substitutions with K's factor, the planar kernels of
 // the reduced Newton solver) each stream megabytes that are no longer in cache from the pass
 // before, in short runs per supernode or per node with work in between. The processor's own
-// prefetching did not keep up with that: requesting the bytes about 2 KB ahead took a
-// back-substitution on the 40k-node airfoil from 3.1 to 2.65 ms (2.3 ms with SparseCholesky's
-// register-blocked products) and the gradient of Ẽ from 1.35 to 1.05 ms (SparseCholesky.cpp,
-// PlanarReducedKernels.cpp). A request is a hint only (it never faults and changes no result).
+// prefetching does not keep up with such short runs, so those loops request the bytes about
+// 2 KB ahead (the distances are chosen in SparseCholesky.cpp and PlanarReducedKernels.cpp;
+// the effect on a time step shows in rbmBenchmark's airfoil pitching series). A request is a
+// hint only (it never faults and changes no result).
 
 #include <algorithm>
 #include <cstddef>

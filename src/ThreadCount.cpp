@@ -20,11 +20,11 @@ bool isSet(const char* variable)
 #ifdef _OPENMP
 // One thread means one thread in the libraries too. Debian's CHOLMOD (SuiteSparse 5.12) asks
 // for num_threads(CHOLMOD_OMP_NUM_THREADS), compiled as 4, in every large supernode of its
-// numeric factorisation, whatever OMP_NUM_THREADS says: with OMP_NUM_THREADS=1 a
-// one-step rbmMoveMesh on the 40k-node airfoil started 3 extra threads and made ~6000
-// context switches instead of ~60, 0.02-0.05 s of CPU out of 0.63 (2-core AMD EPYC,
-// 2026-11-25). OpenMP's max-active-levels of 0 makes every parallel region, num_threads
-// clause or not, run on the thread that meets it (OpenMP 5.0; GCC's libgomp honours it).
+// numeric factorisation, whatever OMP_NUM_THREADS says: a run told to use one thread would
+// still start extra threads and pay for their context switches, for work a team does not
+// speed up (docs/rbmMoveMesh.md, "Threads"). OpenMP's max-active-levels of 0 makes every
+// parallel region, num_threads clause or not, run on the thread that meets it (OpenMP 5.0;
+// GCC's libgomp honours it).
 // With more than one thread the level is OpenMP's own default again.
 void limitParallelRegions(int threads)
 {

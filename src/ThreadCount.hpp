@@ -17,7 +17,7 @@
 // Inside a host program (the OpenFOAM plugin) rbm follows the host's convention instead: one
 // core per process, unless OMP_NUM_THREADS says otherwise (applyHostThreadCountPolicy): a
 // flow solver's ranks already fill the cores, and threads that wait for a busy core at every
-// barrier made a motion step several times slower. Other programs get OpenMP's default
+// barrier make a motion step several times slower. Other programs get OpenMP's default
 // (OMP_NUM_THREADS, else every core). Without OpenMP (a compiler without it) everything runs
 // on 1 thread.
 
@@ -61,9 +61,10 @@ int threadCount();
 // num_threads clause, which overrides OMP_NUM_THREADS) runs on the calling thread whenever
 // rbm may use fewer than teamSize threads: the library then stays within rbm's thread count
 // instead of oversubscribing the cores. For CHOLMOD's factorisation (teamSize 4,
-// SparseCholesky.cpp), whose regions copy and clear supernodes, a team per large supernode
-// on a 2-core machine cost more than it saved: quad2D with 10^6 nodes, K's set-up 4.5-4.7 ->
-// 3.2 s with one thread and 3.8 -> 3.1 s with two (2-core AMD EPYC, 2026-11-26).
+// SparseCholesky.cpp), whose regions only copy and clear supernodes, a team per large
+// supernode on fewer cores than the team costs more in start-up and waiting than it saves,
+// at one thread and at two (docs/rbmMoveMesh.md, "Threads"; rbmBenchmark's quad2D case
+// times K's set-up).
 // Restores OpenMP's max-active-levels on leaving. Nothing without OpenMP.
 class LibraryTeamsWithinThreadCount {
 public:

@@ -4,8 +4,9 @@
 // variants with GCC's target attribute and chosen at run time, so the program still runs on a
 // CPU without AVX. Neither variant uses FMA, so both round lane by lane as the scalar formulas
 // and give the same result bit for bit; tests switch AVX2 off to check exactly that. AVX2
-// rather than AVX: its single-instruction broadcasts of a lane (vpermpd) instead of two
-// shuffles made the 10⁵-cell solve 5 % faster (1.74 instead of 1.83 s).
+// rather than AVX: the kernels broadcast lanes often, and AVX2 does that in one instruction
+// (vpermpd) where AVX needs two shuffles, which shows in the whole 3D solve (rbmBenchmark's
+// twist3D case).
 
 namespace rbm {
 

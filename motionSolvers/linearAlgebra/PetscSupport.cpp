@@ -42,8 +42,8 @@ PetscSession::PetscSession() : PetscSession(nullptr, nullptr) {}
 namespace {
 
 // A program started without mpirun is an MPI "singleton". Open MPI then starts its runtime
-// daemon and probes the network interfaces, 0.3–0.4 s of a 0.5 s start on our machines,
-// although one process needs neither. These settings skip both; a value already in the
+// daemon and probes the network interfaces, most of a one-process start (docs/parallel.md,
+// "Serial start-up"), although one process needs neither. These settings skip both; a value already in the
 // environment wins, and under mpirun (which sets OMPI_COMM_WORLD_SIZE or PMIX_RANK)
 // nothing is changed. Other MPI implementations ignore OMPI_ variables.
 void preferFastSingletonStart()
@@ -61,9 +61,8 @@ void preferFastSingletonStart()
 
 // OpenBLAS (Debian's libopenblas0, pthread build) starts one thread per core. The direct
 // factorisations' fronts are small (at most ~1000 rows on the 40k-node airfoil), so a second
-// BLAS thread gained nothing on a quiet 2-core machine (first airfoil solve 0.70 s either
-// way), while on a shared one its spinning cost CPU and wall: airfoil first solve 0.82-1.01 s
-// wall / 0.59-0.62 s CPU with one thread, 1.12-2.08 s / 0.75-1.37 s with two (load 4-5).
+// BLAS thread gains nothing on a quiet machine, while on a shared one its spinning costs CPU
+// and wall time (docs/motionSolver.md, "Direct solver"; docs/rbmMoveMesh.md, "Threads").
 // So one thread, unless the environment asks otherwise (OPENBLAS_NUM_THREADS,
 // GOTO_NUM_THREADS or OMP_NUM_THREADS, which OpenBLAS reads itself). Looked up at run time:
 // with another BLAS there is nothing to set.
@@ -205,17 +204,12 @@ namespace {
 // MUMPS orders 2D systems up to this many rows with AMF (approximate minimum fill,
 // ICNTL(7) = 2) instead of its automatic choice, which in Debian's MUMPS 5.5 (built with
 // PORD only, no METIS or SCOTCH) is PORD's nested dissection. Both order the node graph
-// (ICNTL(15): blocks of 3 unknowns). AMF's analysis is 4-6 times faster, its factors need
-// about as many flops in 2D up to 10⁵ nodes; beyond, and in 3D, nested dissection wins.
-// Measured (one core, MUMPS's own timers; CPU of the first solve = analysis +
-// factorisation + solve):
-//   40k-node boundary-layer airfoil, 119 466 rows: PORD analysis 0.23-0.37 s + 3.8 GFlop
-//     (0.33-0.41 s), AMF 0.05-0.08 s + 4.6 GFlop (0.45-0.52 s): 0.70 -> 0.56 s CPU;
-//   quad2D / tri2D, 10⁵ nodes (305 040 rows): analysis 0.65 -> 0.17 s / 0.68 -> 0.11 s,
-//     flops +15 % / -4 %: 1.91 -> 1.64 s / 1.80 -> 1.43 s CPU; 10⁴ nodes 0.12 -> 0.09 s;
-//   hex3D / tet3D, 3·10³ nodes (18 000 rows): AMF needs 1.7× / 1.3× PORD's flops (lost).
-// AMD, QAMD and PETSc's CHOLMOD were slower; solutions agree to rounding (1e-12).
-// docs/motionSolver.md, "Direct solver".
+// (ICNTL(15): blocks of 3 unknowns). On 2D meshes AMF's analysis is several times faster and
+// its factors need about as many flops, so the first solve (analysis + factorisation +
+// solve) is cheaper; beyond about 10⁵ nodes, and in 3D, nested dissection's factors need
+// enough fewer flops that it wins. AMD, QAMD and PETSc's CHOLMOD are slower; solutions agree
+// to rounding (1e-12). The comparison (MUMPS's own timers, one core) is made on rbmBenchmark's
+// airfoil, quad2D, tri2D, hex3D and tet3D cases: docs/motionSolver.md, "Direct solver".
 [[maybe_unused]] constexpr int amfOrderingRowLimit = 320000;
 
 // setDefaultLinearSolver marks a KSP whose MUMPS factorisation should use AMF with this
@@ -427,8 +421,8 @@ BlockSystemSolver::BlockSystemSolver(std::span<const int> rowOffsets, std::span<
     RBM_CHECK_PETSC(PetscStrcmp(type, KSPPREONLY, &preonly));
     // Direct: one application of a factorisation. `preonly` with another preconditioner
     // (e.g. -rbm_reduced_pc_type gamg alone, over the direct default's preonly) is one cycle,
-    // not a factor to back-substitute with (before, the reduced Newton asked PETSc for the
-    // factor and stopped with "No method getfactoredmatrix for PC of type gamg").
+    // not a factor to back-substitute with (asking PETSc for its factor would stop with
+    // "No method getfactoredmatrix for PC of type gamg").
     PC pc = nullptr;
     RBM_CHECK_PETSC(KSPGetPC(ksp_, &pc));
     const PetscObject pcObject = reinterpret_cast<PetscObject>(pc);

@@ -85,7 +85,7 @@ using PetscSnes = PetscHandle<SNES, SNESDestroy>;
 // initialised it. Installs PETSc's "return" error handler so errors become exceptions
 // through checkPetsc instead of tracebacks on stderr. Before initialising it sets Open MPI's
 // fast singleton start and one OpenBLAS thread, unless the environment says otherwise
-// (both measured in PetscSupport.cpp).
+// (PetscSupport.cpp says why).
 class PetscSession {
 public:
     PetscSession();                       // no command-line options (PETSC_OPTIONS still read)
@@ -156,14 +156,14 @@ enum class LinearSolverKind {
 };
 
 // Direct factorisation is the automatic choice in 2D and, in 3D, up to this many scalar
-// unknowns. 3D fronts are large: with Debian's reference BLAS, MUMPS needed 21 s for the
-// 35k-unknown linearized system of a 20³-node box that CG + GAMG solved in 1 s.
+// unknowns. 3D fronts are large: beyond a few tens of thousands of unknowns a 3D
+// factorisation costs many times what CG + GAMG costs (docs/motionSolver.md, "Linear solvers").
 inline constexpr int directSolverRowLimit = 20000;
 
 // Sets the default Krylov method and preconditioner of ksp (before configureFromOptions).
 // Returns true when the default is a direct factorisation. For 2D systems up to 320 000
 // rows that MUMPS factorises, MUMPS orders with AMF (-mat_mumps_icntl_7 2, added by
-// configureFromOptions) unless an option says otherwise: measured faster there, see
+// configureFromOptions) unless an option says otherwise: faster there, see
 // PetscSupport.cpp.
 bool setDefaultLinearSolver(KSP ksp, LinearSolverKind kind, int dimension, int rowCount, MatrixSymmetry symmetry,
                             double relativeTolerance);

@@ -4,10 +4,10 @@
 // weighted graph Laplacian with some rows held by boundary values): rbm's own, for the 3D cycle
 // of ThreeVectorMultigrid (issue 12).
 //
-// Why not PCGAMG's: GAMG builds the same kind of hierarchy, but on the 27-point Laplacian of the
-// 10⁶-cell hexahedral cube its set-up took 5.4 s of a 20.8 s step, 3.1 s of it creating a
-// filtered graph and coarsening by a maximal independent set on that graph SQUARED (125 entries a
-// row). Greedy aggregation on the matrix's own graph makes aggregates of the same size (a node
+// Why not PCGAMG's: GAMG builds the same kind of hierarchy, but on the 27-point Laplacian of a
+// hexahedral mesh its set-up is a large part of a step, most of it creating a filtered graph and
+// coarsening by a maximal independent set on that graph SQUARED (125 entries a row; measured on
+// rbmBenchmark's twist3D case, docs/motionSolver.md, "The preconditioner K⁻¹"). Greedy aggregation on the matrix's own graph makes aggregates of the same size (a node
 // and its whole neighbourhood: 3 × 3 × 3 nodes on a hexahedral grid, as MIS on the squared graph)
 // in one pass over the pattern. The rest is as GAMG: the tentative prolongator T (1 where a row
 // belongs to an aggregate), smoothed once, P = (I − ω D⁻¹A) T with ω = 4 / (3 λ), λ the largest

@@ -190,9 +190,9 @@ SparseCholesky::SparseCholesky(int n, std::span<const int> rowOffsets, std::span
         // entries): no second allocation of L's size. Supernode s's entries start at float
         // valueStart_[s] ≤ CHOLMOD's double valuePointer[s] (rbm stores the triangle, not the
         // square, of the diagonal block), so they never reach a later supernode's block; the
-        // supernode's own block is read into scratch first. On the 10⁶-node quad2D mesh 342 MB of
-        // fresh pages fewer (the kernel's zeroing of fresh pages was a quarter of that run): the
-        // set-up 7.4–7.8 → 6.2–6.6 s of CPU (alternating runs).
+        // supernode's own block is read into scratch first. A second array would be fresh
+        // pages of the factor's size, which the kernel zeroes, a large part of the set-up on
+        // big 2D meshes (rbmBenchmark's quad2D case at 10⁶ nodes).
         bool contiguous = factor.xtype == CHOLMOD_REAL && valuePointer[0] == 0;
         for (std::size_t supernode = 0; supernode < supernodes && contiguous; ++supernode)
             contiguous = valuePointer[supernode + 1] - valuePointer[supernode] ==
@@ -276,10 +276,9 @@ RBM_ALWAYS_INLINE void subtractMultiples(const Entry* __restrict a, const double
 // The products with the block B of the rows below a supernode (column-major, rows × columns),
 // for single-precision entries in the sweeps' AVX variant. The generic code below goes column
 // by column through a work vector (`gathered`), one load and one store of every row's partial
-// sum per entry of B, and that bound the sweep at a small fraction of what the cache delivers
-// (the factor of a 200 × 200 grid Laplacian, two right-hand sides, kept in cache: 2.1 ms a
-// solve). Here the partial sums stay in registers: 1.5 ms. The same operations in the same
-// order, no FMA, so the same bits as the generic code
+// sum per entry of B, which bounds the sweep at a small fraction of what the cache delivers
+// even with the factor in cache. Here the partial sums stay in registers. The same operations
+// in the same order, no FMA, so the same bits as the generic code
 // (SparseCholesky.AvxAndBaselineSweepsAgreeBitForBit). Written with intrinsics because the
 // compiler vectorised the plain loops across the wrong index. Not inlined (one call per
 // supernode), so that only these functions need the AVX2 target.
@@ -373,8 +372,9 @@ template <int dim>
 void subtractTransposedBlockProductAvx(const float*, int, int, const double*, double*);
 #endif
 
-// How far ahead of the current supernode the sweeps request L's entries (measured on the
-// pitching series: 1, 2, 4 and 8 KB gave 2.3, 2.2, 2.2 and 2.5 ms a back-substitution).
+// How far ahead of the current supernode the sweeps request L's entries: about one supernode
+// of the airfoil's factor. 1 to 4 KB do about equally well on the airfoil pitching series
+// (rbmBenchmark --cases airfoil), 8 KB worse.
 constexpr std::ptrdiff_t factorLookaheadBytes = 2048;
 
 // The supernodal factor's index arrays (SparseCholesky's members), for the sweeps below.
@@ -396,10 +396,8 @@ RBM_ALWAYS_INLINE void sweepSupernodes(const SupernodalLayout& factor, const Ent
     constexpr bool avxBlocks = avx && haveAvxBlockKernels && std::is_same_v<Entry, float>;
     // L's entries are read once per sweep in address order (backwards in the second), a
     // supernode of the airfoil's factor about 2 KB: in a time step the factor comes from
-    // memory, and the processor's own prefetching did not keep up with these short runs. So
-    // the sweeps request the entries factorLookaheadBytes ahead (ReadAhead.hpp): a
-    // back-substitution with two right-hand sides in the pitching series 3.1 → 2.3 ms with the
-    // register-blocked products above (2.65 ms without them).
+    // memory, and the processor's own prefetching does not keep up with these short runs. So
+    // the sweeps request the entries factorLookaheadBytes ahead (ReadAhead.hpp).
     auto byteOffset = [&](int supernode) {
         return static_cast<std::ptrdiff_t>(factor.valueStart[supernode] * sizeof(Entry));
     };
@@ -493,7 +491,7 @@ RBM_ALWAYS_INLINE void sweepAny(const SupernodalLayout& factor, const double* do
 }
 
 // The AVX2 and the baseline variant (src/VectorInstructions.hpp): four doubles per instruction
-// made a back-substitution on the airfoil's factor about 10 % faster (2.95 -> 2.65 ms). No FMA
+// instead of two halve the sweeps' arithmetic instructions. No FMA
 // in either, so both give the same bits (SparseCholesky.AvxAndBaselineSweepsAgreeBitForBit).
 #if defined(__x86_64__)
 #define RBM_AVX2_TARGET [[gnu::target("avx2")]]

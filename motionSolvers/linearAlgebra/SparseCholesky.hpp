@@ -6,8 +6,8 @@
 // Why not PETSc's MatMatSolve on its CHOLMOD factor: CHOLMOD's supernodal back-substitution
 // calls BLAS (dtrsm/dgemm) once per supernode. A 2D mesh Laplacian has thousands of supernodes
 // of a few to a few dozen columns, so with 2–3 right-hand sides the BLAS calls' set-up, not the
-// flops, dominates (perf on the 40k-node airfoil: 34 % of a pitching run in
-// cholmod_super_*solve, most of it in OpenBLAS copy routines). Here CHOLMOD orders (AMD / METIS,
+// flops, dominates (profiled on the airfoil pitching series: cholmod_super_*solve's time
+// goes mostly to OpenBLAS copy routines). Here CHOLMOD orders (AMD / METIS,
 // its own choice of the best) and factorises supernodally (fast); rbm then keeps each
 // supernode as a packed lower-triangular diagonal block and a column-major block of the rows
 // below it, with one row list per supernode, and sweeps them itself: forward, one contiguous
@@ -17,13 +17,14 @@
 // sit in supernodes of 8 columns or more. The right-hand sides are interleaved (all components
 // of a node side by side) in the caller's vectors and deinterleaved per supernode, so every
 // entry of L is read once per solve for all components. The sweeps are then bound by reading
-// L (8.2 MB a sweep on the airfoil in single precision, about 6 GB/s on the 2-core machine).
+// L from memory, which is why the entries are kept in single precision (below).
 // On CPUs with AVX2 the products with the blocks below the supernodes keep eight rows' (forward)
 // or four columns' (backward) partial sums in registers instead of the work vector, with the
-// same operations in the same order (the same bits): a solve with two right-hand sides on a
-// 200 × 200 grid's factor 2.1 → 1.5 ms with the factor in cache. In a time step the factor
-// comes from memory, and the sweeps request its entries 2 KB ahead; both together took a
-// back-substitution of the pitching series on the airfoil from 3.1 to 2.3 ms.
+// same operations in the same order (the same bits), so that a factor in cache is swept at
+// nearly the cache's speed. In a time step the factor comes from memory, and the sweeps
+// request its entries 2 KB ahead (ReadAhead.hpp). What both give a back-substitution is
+// measured on the airfoil pitching series (rbmBenchmark --cases airfoil; docs/motionSolver.md,
+// "Reduced Newton", "The preconditioner K⁻¹").
 
 // Built only where CHOLMOD's header was found (RBM_HAVE_CHOLMOD; Debian: libsuitesparse-dev,
 // which petsc-dev depends on). Sequential: one process's matrix.

@@ -233,8 +233,9 @@ void ThreeVectorMultigrid::setUp(std::span<const int> rowOffsets, std::span<cons
     direction_.assign(finest, 0.0);
     product_.assign(finest, 0.0);
     // The finest operator read in single precision (8 instead of 12 bytes an entry, the product
-    // being bound by reading it): at 10⁶ hexahedra 2 s less for 94 MiB more. A preconditioner of
-    // a flexible CG needs no more; the operator stays symmetric.
+    // being bound by reading it): a faster cycle for a single-precision copy of the finest
+    // entries (counted in MemoryEstimate.cpp). A preconditioner of a flexible CG needs no
+    // more; the operator stays symmetric.
     if (levels_.size() > 1) {
         Level& fine = levels_.front();
         fine.singleValues.assign(fine.values, fine.values + fine.offsets[fine.rows]);
@@ -279,9 +280,9 @@ void multiplyRows(int begin, int end, const int* offsets, const int* columns, co
 #if defined(__x86_64__)
 // The same with AVX2: a column's three values in one register (a masked load, which does not read
 // past the vector's end), one multiply and one add per entry instead of three each. No FMA, so
-// every lane rounds as the scalar code does and the result is the same bit for bit. Measured on
-// the twisted 10⁵-cell hexahedral cube, one thread: the reduced Newton solve 2.05 → 1.95 s CPU
-// (the product reads the matrix, so the gain is small).
+// every lane rounds as the scalar code does and the result is the same bit for bit. The gain is
+// small, since the product is bound by reading the matrix; it shows in the reduced Newton
+// solve of rbmBenchmark's twist3D case.
 template <typename Value>
 [[gnu::target("avx2")]] void multiplyRowsAvx(int begin, int end, const int* offsets, const int* columns,
                                              const Value* values, const double* x, double* y)

@@ -37,13 +37,13 @@ public:
     // (PETSc's matrix wrapping the caller's arrays, no copy; GAMG's defaults, then the options
     // under rbm_<solverName>_, e.g. -rbm_reduced_pc_gamg_threshold; PETSc's objects released
     // before returning). nullptr when the options choose a preconditioner that is not multigrid,
-    // on more than one rank, or where the hierarchy cannot be built. Measured on the twisted
-    // 10⁶-cell hexahedral cube (one thread): the reduced Newton solver's set-up (K, the
-    // hierarchy, per-node data) 5.7–6.0 s with GAMG's hierarchy (5.4 s in GAMG, 3.1 s of it its
-    // graph and the coarsening on the squared graph), 2.9–3.1 s with rbm's aggregation (most of
-    // it PETSc's Pᵀ A P), and no more CG iterations (21 against 23; at 10⁵ cells 18 against 20). (GAMG without squaring the graph,
-    // -pc_gamg_square_graph 0: 7.0 s instead of 4.2 s, 49 instead of 59 CG iterations; misk
-    // distance-2 or hem coarsening: 9.6 s and 19 s.)
+    // on more than one rank, or where the hierarchy cannot be built. rbm's own aggregation
+    // (SmoothedAggregation.hpp) is the default because on hexahedral meshes its set-up costs
+    // about half of GAMG's (whose time goes to its graph and the coarsening on the squared
+    // graph) for about the same CG iterations; GAMG without squaring the graph
+    // (-pc_gamg_square_graph 0), or with misk distance-2 or hem coarsening, is slower still
+    // (docs/motionSolver.md, "Reduced Newton", "The preconditioner K⁻¹"; rbmBenchmark's
+    // twist3D case).
     static std::unique_ptr<ThreeVectorMultigrid> build(std::span<const int> rowOffsets, std::span<const int> columns,
                                                        std::span<const double> values, std::string_view solverName);
 

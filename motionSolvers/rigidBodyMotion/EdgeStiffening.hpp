@@ -3,7 +3,7 @@
 // the factor f_ij of every edge, computed once from the reference mesh, and the rule of
 // `stiffening auto` that applies it only while every prescribed patch moves rigidly (a body
 // moving in a fixed far field), not where a prescribed patch deforms (a bending wing), where
-// it made the mesh worse (docs/motionSolver.md, "Default stiffening").
+// it makes the mesh worse (docs/motionSolver.md, "Default stiffening").
 //
 // The factors are shared with the problems built from them (one array of about 200 bytes per
 // cell in 3D instead of three).

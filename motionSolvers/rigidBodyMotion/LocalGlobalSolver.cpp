@@ -96,9 +96,9 @@ bool polarRotation(const Matrix3& covariance, Matrix3& rotation)
     // cross products of X's columns. RBM's covariances are close to a rotation times an
     // isotropic matrix (Σ w d dᵀ with w = 1/|d|² is about the identity times the neighbour
     // count / 3), so a few iterations reach rounding, against several Jacobi sweeps and the
-    // sorting and completion of an SVD. Measured on the twisted 10⁶-cell hexahedral cube (one
-    // thread): the SVD had 7.8 % of the run's profile samples; the reduced Newton solve took
-    // 26.3 instead of 28.9 s of CPU (same iterations).
+    // sorting and completion of an SVD. A fit runs per node every time the rotations are
+    // refitted, so on large 3D meshes the SVD is a visible share of a solve's profile; this
+    // iteration gives the same iterations of the solve for less (rbmBenchmark's twist3D case).
     auto column = [](const Matrix3& a, int k) { return Vector3{a.m[0][k], a.m[1][k], a.m[2][k]}; };
     double scale = 0.0;
     for (int r = 0; r < 3; ++r)

@@ -91,9 +91,9 @@ MatrixFreeLinearizedSystem::MatrixFreeLinearizedSystem(const RbmProblem& problem
     // rbm's cycle (ThreeVectorMultigrid: its smoothed-aggregation hierarchy, symmetric Chebyshev
     // smoothing, so a symmetric positive definite preconditioner), unless the options choose
     // another preconditioner under rbm_linearized_mf_ (then PETSc's, one PCApply per
-    // component). PCGAMG's cycle was not positive definite on the boundary-layer airfoil with
-    // the default stiffening: CG stopped with DIVERGED_INDEFINITE_PC, 214 inverted cells after
-    // 6 sub-step splits (docs/motionSolver.md, "Linear solvers").
+    // component). PCGAMG's cycle is not positive definite on the boundary-layer airfoil with
+    // the default stiffening: CG stops with DIVERGED_INDEFINITE_PC and the step ends with
+    // inverted cells after every sub-step split (docs/motionSolver.md, "Linear solvers").
     cycle_ = ThreeVectorMultigrid::build(pattern.rowOffsets, pattern.columns, laplacianValues_, "linearized_mf");
     if (!cycle_) {
         RBM_CHECK_PETSC(MatCreate(PETSC_COMM_SELF, laplacian_.out()));
@@ -119,12 +119,13 @@ MatrixFreeLinearizedSystem::MatrixFreeLinearizedSystem(const RbmProblem& problem
     // Converged on the PRECONDITIONED residual M⁻¹r, a displacement (M⁻¹ a cycle of the
     // displacement Laplacian), not on the true residual r, a force in units of the 1/|d|²
     // weights. On a boundary-layer mesh the true residual is dominated by the nodes at the wall
-    // (weights up to ~5e10), so its relative reduction says little about the far field: the
-    // boundary-layer airfoil solved in 3D between two symmetry planes (aspect ratio up to ~870,
-    // 4°) stopped at relativeTolerance 1e-10 with nodes 0.042 chord from the converged solution
-    // (the assembled CG + GAMG and a 1e-14 solve agree to 4e-6); on the preconditioned residual
-    // it stops within 2.4e-6 of it, at the same cost on the twisted hexahedral cube (10⁵ cells:
-    // 33 CG iterations instead of 34; docs/motionSolver.md, "Linear solvers").
+    // (weights up to ~5e10), so its relative reduction says little about the far field: a
+    // solve stopped on it at relativeTolerance 1e-10 can leave far-field nodes hundredths of a
+    // chord from the converged solution. The preconditioned residual is a displacement, so
+    // its reduction follows what every node still has to move, at the same cost on the
+    // twisted cube (docs/motionSolver.md, "Matrix-free linearized solve" and "Linear
+    // solvers, measured": the boundary-layer airfoil solved in 3D between two symmetry planes,
+    // RigidBodyMotionSolverSubSteps.DISABLED_MeasureMatrixFreeOnTheBoundaryLayerAirfoil).
     RBM_CHECK_PETSC(KSPSetNormType(ksp_, KSP_NORM_PRECONDITIONED));
     RBM_CHECK_PETSC(KSPSetTolerances(ksp_, relativeTolerance, PETSC_DEFAULT, PETSC_DEFAULT, 10000));
     PC pc = nullptr;

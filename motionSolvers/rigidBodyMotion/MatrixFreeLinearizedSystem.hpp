@@ -31,10 +31,10 @@ namespace rbm::motion {
 using PetscPc = PetscHandle<PC, PCDestroy>;
 
 // Whether the coupled linearized solver works matrix-free: asked for (`matrixFree`), or
-// `automatic` for any 3D problem on one MPI rank. Measured on the twisted cube
-// (docs/motionSolver.md, benchmarks/results/2026-11-22b-cpp2core-twist3D.md): 8 times less
-// CPU than MUMPS already at 1 000 cells (0.029 s against 0.247 s), 7–11 times less than CG +
-// GAMG on the assembled 6×6 blocks at 10⁴–10⁵ cells, with 4–7 times less memory.
+// `automatic` for any 3D problem on one MPI rank: in 3D it takes several times less CPU and
+// memory than MUMPS or CG + GAMG on the assembled 6×6 blocks, from about a thousand cells up
+// (docs/motionSolver.md, "Linear solvers, measured"; rbmBenchmark --cases twist3D --variants
+// linearized,linearizedAssembled).
 bool matrixFreeChosen(LinearSolverKind kind, int dimension, int unknownCount);
 
 class MatrixFreeLinearizedSystem {

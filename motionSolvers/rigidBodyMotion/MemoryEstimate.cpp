@@ -40,9 +40,8 @@ constexpr double matrixFreeBytesPerNode = 400.0;
 // iterative scalar Laplacians, the V-cycle's single-precision copy of K (4 bytes a block), plus
 // per unknown node the reduced Hessian's data (296 bytes, ReducedHessian3D.hpp), the V-cycle's
 // vectors (ThreeVectorMultigrid.hpp, about 130) and the Newton iteration's vectors at the peak
-// (about 170). Measured on the twisted hex cube (rbmBenchmark, peak minus the peak before the
-// solver is built; benchmarks/results/2026-11-25c-cpp2core-twist3D): 165 MiB at 10⁵ cells
-// (estimate 160 MiB), 1 620 MiB at 10⁶ cells (estimate 1 648 MiB).
+// (about 170). Checked against the peaks of rbmBenchmark's twist3D case at 10⁵ and 10⁶ cells
+// (peak minus the peak before the solver is built), which it matches to a few per cent.
 constexpr double reducedNewton3DBytesPerNode = 600.0;
 
 double variantFactor(SolveVariant variant)

@@ -10,8 +10,8 @@ namespace rbm::motion {
 
 namespace {
 // The passes below stream the edge records (32 bytes each, 10 MB on the 40k-node airfoil) and
-// request them this far ahead (ReadAhead.hpp): on the pitching series ∇Ẽ 1.35 → 1.05 ms and
-// the Hessian's data 1.95 → 1.7 ms a pass (1 and 4 KB gave the same).
+// request them this far ahead (ReadAhead.hpp); 1 to 4 KB do equally well on the airfoil
+// pitching series (rbmBenchmark --cases airfoil).
 constexpr std::ptrdiff_t edgeLookaheadBytes = 2048;
 } // namespace
 
@@ -94,8 +94,8 @@ double PlanarReducedKernels::fitAndEnergy(std::span<const Vector3> displacement,
             dotSum += edge.weight * (edge.dx * ex + edge.dy * ey);
         }
         // The planar local step (LocalGlobalSolver: bestPlanarAngle, atan2(cross, dot)), as its
-        // cosine and sine directly: one square root instead of atan2, cos and sin (3 % of a
-        // pitching run).
+        // cosine and sine directly: one square root instead of atan2, cos and sin, in a step
+        // that runs for every node each time the rotations are fitted.
         const double length = std::sqrt(crossSum * crossSum + dotSum * dotSum);
         const double c = length > 0.0 ? dotSum / length : 1.0, s = length > 0.0 ? crossSum / length : 0.0;
         double energy = 0.0;

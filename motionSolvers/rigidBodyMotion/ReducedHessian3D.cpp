@@ -122,8 +122,8 @@ using AlignedDouble4 = ReducedHessian3D::AlignedDouble4;
 
 // The two edge passes of apply over unknown nodes [begin, end), written once and compiled twice
 // (below): for AVX2, where a Double4 is one register, and for the baseline x86-64 (SSE2), where
-// GCC keeps Double4 sums in memory and the kernel is slower than scalar code (measured at 10⁵
-// cells: 3.7 s instead of 2.2 s for the solve). No FMA in either (AVX2 without -mfma), so both
+// GCC keeps Double4 sums in memory and the kernel is markedly slower than scalar code (it is
+// the fallback for CPUs without AVX2, not the fast path). No FMA in either (AVX2 without -mfma), so both
 // round alike, lane by lane as the scalar formulas.
 struct PassData {
     const int* nodes;

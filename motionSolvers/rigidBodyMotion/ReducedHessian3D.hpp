@@ -22,9 +22,8 @@
 // scalar code that spills its accumulators (SSE2 has 16 registers for 9 + 3 sums). The passes
 // run as AVX2 where the CPU has it (VectorInstructions.hpp); the operations per lane are those
 // of the scalar formulas in the same order, so the products are bit for bit the scalar
-// kernel's. Measured on the twisted hexahedral cube, one thread, CPU s of the solve: 10⁵ cells
-// 2.25 → 2.05 (with ThreeVectorMultigrid's AVX products 1.95); 10⁶ cells, both, 22.8 → 20.6;
-// 64 MiB more at 10⁶ nodes (20 instead of 12 doubles per node).
+// kernel's. The price is memory, 20 instead of 12 doubles per node, for fewer instructions
+// per edge term; what it gives the solve shows in rbmBenchmark's twist3D case.
 //
 // Determinism: every loop writes its own node's entries; each node's sums run in graph order.
 

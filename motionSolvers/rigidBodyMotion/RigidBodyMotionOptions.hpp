@@ -1,8 +1,8 @@
 #pragma once
 // The options of the rigid-body-motion (RBM) motion solver: the `rigidBodyMotionSolverCoeffs`
 // dictionary of constant/dynamicMeshDict. Every entry is optional; the defaults make
-// `motionSolver rigidBodyMotionSolver;` alone the robust choice (coupled nonlinear RBM with
-// Newton's method and 1/|d|² weights, docs/method.md §1 and §3).
+// `motionSolver rigidBodyMotionSolver;` alone the robust choice (coupled nonlinear RBM by
+// reduced Newton, with 1/|d|² weights, docs/method.md §1 and §3).
 //
 //     rigidBodyMotionSolverCoeffs
 //     {
@@ -12,13 +12,15 @@
 //         weighting         inverseDistanceSquared; // uniform | inverseDistance | inverseDistanceSquared
 //         subSteps          auto;                 // auto | N ≥ 1                    (thesis §2.6)
 //         maxSubStepSplits  6;                    // auto: halvings of a sub-step that inverts cells
-//         maxSubSteps       100;                  // auto: cap of the thesis' count
+//         maxSubSteps       100;                  // auto, linearized: cap on the automatic count
 //         tolerance         1e-11;                // nonlinear convergence, relative to the cell size
 //         relativeTolerance 1e-10;                // Newton's gradient reduction; Krylov tolerance
+//                                                 //   (unset by default: each algorithm's own)
 //         displacementTolerance 1e-6;             // reduced Newton: also converged when no node's
 //                                                 //   estimated error exceeds this × its shortest edge
 //                                                 //   (0: only the gradient tests, to round-off)
-//         maxIterations     50;                   // nonlinear iterations (per sub-step)
+//         maxIterations     50;                   // nonlinear iterations (per sub-step; default:
+//                                                 //   each algorithm's own, reduced Newton's 50)
 //         linearSolver      automatic;            // automatic | direct | iterative | matrixFree
 //         petscOptions      "-ksp_type cg -pc_type gamg";
 //         stiffening        auto;                 // auto | none | inverseDistance (a b);
@@ -46,8 +48,10 @@ namespace rbm::motion {
 
 enum class RbmCoupling { coupled, decoupled };
 enum class RbmFormulation { nonlinear, linearized };
-// How the coupled nonlinear energy is minimised: Newton (SNES, analytic Hessian, started from
-// the linearized solution) or local/global alternation that hands over to Newton when it stalls.
+// How the coupled nonlinear energy is minimised: reducedNewton (the default), a Newton–CG on
+// the displacements with the rotations eliminated (each node's rotation its best fit);
+// newton, on all unknowns (SNES, analytic Hessian, started from the linearized solution); or
+// localGlobal, alternation that hands over to Newton when it stalls.
 enum class RbmAlgorithm { newton, localGlobal, reducedNewton };
 
 // Stiffening of the edges near chosen patches, OpenFOAM's diffusivity syntax
@@ -92,8 +96,8 @@ struct RigidBodyMotionOptions {
     double tolerance = 1e-11;
     std::optional<double> relativeTolerance;
     // A millionth of each node's shortest edge: far below anything a mesh's quality or a flow
-    // solver sees, and 27 % fewer CG iterations on the airfoil series than the gradient's
-    // rounding level (docs/motionSolver.md, "Reduced Newton"). 0: off.
+    // solver sees, so the solve stops there instead of spending CG iterations on driving the
+    // gradient to its rounding level (docs/motionSolver.md, "Reduced Newton"). 0: off.
     double displacementTolerance = 1e-6;
     std::optional<int> maxIterations;
     LinearSolverKind linearSolver = LinearSolverKind::automatic;
@@ -109,7 +113,8 @@ struct RigidBodyMotionOptions {
     std::string file;                  // the dictionary's file, for later errors
 
     bool automaticSubSteps() const { return subSteps == 0; }
-    // A short description, e.g. "coupled nonlinear (newton), weighting inverseDistanceSquared".
+    // A short description, e.g. "coupled nonlinear (reducedNewton), weighting
+    // inverseDistanceSquared, subSteps auto, stiffening auto".
     std::string describe() const;
 
     // Reads the coefficient dictionary; throws rbm::InputError for unknown keywords and bad values.

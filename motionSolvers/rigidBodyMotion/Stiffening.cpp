@@ -90,8 +90,8 @@ void NearestSurface::addTriangle(const Vector3& a, const Vector3& b, const Vecto
 
 void NearestSurface::addSegment(const Vector3& a, const Vector3& b)
 {
-    // Segments (2D) are split by position only: on the airfoil, whose boundary curves, splits
-    // by facing made stiffeningFactors 10–20 % slower (0.018 → 0.022 s).
+    // Segments (2D) are split by position only: a curved boundary (an airfoil's) has no few
+    // facings to separate, and splitting by facing makes stiffeningFactors slower there.
     primitives_.push_back({a, b, b, true, 0});
 }
 
@@ -146,9 +146,8 @@ void NearestSurface::build()
         // boundary between two facings nearest to the middle: the boxes of a closed boundary
         // split by position contain the domain (the halves of a cube's six sides are
         // half-cubes), so a search from inside prunes nothing near the root, while the sides
-        // facing one way each have a thin box. On the twisted 10⁶-cell cube (2.4e5 triangles,
-        // 1.3e7 edge midpoints, one thread) stiffeningFactors took 8.5 s with position splits
-        // only, 5.6 s now (with stiffeningFactors' candidate rule), the same bits.
+        // facing one way each have a thin box. The distances are the same bits either way;
+        // the search is cheaper on closed 3D boundaries (rbmBenchmark's twist3D case).
         // Otherwise: at the median of the centroids along the longest axis of their box.
         const auto first = primitives_.begin() + task.begin, last = primitives_.begin() + task.end;
         auto byFacing = [](const Primitive& l, const Primitive& r) { return l.facing < r.facing; };
@@ -350,14 +349,14 @@ std::vector<double> stiffeningFactors(const CellNeighbourGraph& graph, std::span
     // primitives, the same number the hierarchy's search gives. Far from the patches a node
     // sees many primitives within that radius: above `candidateLimit` its edges are searched
     // one by one, starting from the last nearest primitive (consecutive midpoints are close).
-    // On the 40k-node airfoil (147k edges, 818 boundary segments, one thread, best of 7):
-    // 0.049 s with a search per edge, 0.040 s now, the same bits; limits of 8 to 48 gave
-    // 0.040-0.042 s, 96 gave 0.045 s. The searches near the wall got cheap; the ~7k nodes
-    // farther than 0.1 chord, with 40-50 box tests per search, now take most of the time.
+    // The result is the same bits as a search per edge. Near the patches the candidate lists
+    // are short and the searches cheap; far from them a node sees many primitives, and the
+    // limit keeps it from testing them all (limits from 8 to 48 do about equally well on the
+    // airfoil; the cost of the whole: docs/motionSolver.md, "Default stiffening").
     // A node farther than 4ρ from its hint's primitive does not look for candidates: the
     // sphere of radius d_h + 2ρ cuts a surface in a disc of radius about 2√(d_h ρ), which
-    // holds more than the limit there (on the twisted 10⁵-cell cube no node had few: the
-    // search up to the limit cost 0.1 of the 0.77 s).
+    // holds more than the limit there, so collecting candidates up to the limit would be
+    // wasted work.
     constexpr std::size_t candidateLimit = 24;
     constexpr double candidateReach = 4.0;
 #pragma omp parallel if (worthThreading(graph.neighbours.size()))
