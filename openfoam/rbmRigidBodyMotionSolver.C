@@ -56,8 +56,10 @@ Foam::vector fixedNormalSlipNormal(const Foam::pointPatchField<Foam::vector>& fi
     return Foam::vector(dict.lookup("n"));
 }
 
-// The entry that selects the motion solver, in the dictionary that holds the Coeffs block.
+// The entry that selects the motion solver, in the dictionary that holds the Coeffs block;
+// OpenFOAM v1912 also reads it under its old name.
 const Foam::word motionSolverKeyword("motionSolver");
+const Foam::word oldMotionSolverKeyword("solver");
 
 // rbm's own coefficients from the dictionary a selection table hands to the constructor.
 // OpenFOAM v1912 hands the whole dynamicMeshDict and OpenFOAM 13 the <name>Coeffs block, or
@@ -65,14 +67,16 @@ const Foam::word motionSolverKeyword("motionSolver");
 // dictionary (coeffDict(), optionalSubDict()), whose other entries rbm's keyword check would
 // reject: the dynamicFvMesh, libs and the previous solver's entries (diffusivity, ...) a user
 // leaves there when switching a case with one line. The dictionary that selected the solver
-// has the motionSolver entry; a Coeffs block has not. Absent block: every default.
+// has the motionSolver (or solver) entry; a Coeffs block has not. Absent block: every default.
 Foam::dictionary rbmCoefficients(const Foam::dictionary& dict)
 {
-    if (!dict.found(motionSolverKeyword))
+    const Foam::word& keyword =
+        dict.found(motionSolverKeyword) ? motionSolverKeyword : oldMotionSolverKeyword;
+    if (!dict.found(keyword))
     {
         return dict;
     }
-    const Foam::word blockName(Foam::word(dict.lookup(motionSolverKeyword)) + "Coeffs");
+    const Foam::word blockName(Foam::word(dict.lookup(keyword)) + "Coeffs");
     if (dict.isDict(blockName))
     {
         return dict.subDict(blockName);
