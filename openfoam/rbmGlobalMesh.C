@@ -4,6 +4,7 @@
 #include "globalIndex.H"
 #include "globalMeshData.H"
 #include "processorPolyPatch.H"
+#include "rbmOpenFOAMVersion.H"
 
 namespace
 {
@@ -243,7 +244,7 @@ std::vector<double> Foam::rbmGlobalMesh::pointNormals(label patchi) const
         {
             faceOfPoints[k] = host_.faceVertices[host_.faceOffsets[f] + k];
         }
-        const vector n = faceOfPoints.unitNormal(globalPoints_);
+        const vector n = rbmOpenFOAM::unitNormal(faceOfPoints, globalPoints_);
         for (const label p : faceOfPoints)
         {
             auto iter = local.find(p);
@@ -262,7 +263,7 @@ std::vector<double> Foam::rbmGlobalMesh::pointNormals(label patchi) const
     normals.reserve(3*sums.size());
     for (vector n : sums)
     {
-        n.normalise();
+        n = normalised(n);
         normals.push_back(n.x());
         normals.push_back(n.y());
         normals.push_back(n.z());
@@ -281,10 +282,9 @@ Foam::vector Foam::rbmGlobalMesh::planeNormal(label patchi) const
         {
             faceOfPoints[k] = host_.faceVertices[host_.faceOffsets[f] + k];
         }
-        sum += faceOfPoints.unitNormal(globalPoints_);
+        sum += rbmOpenFOAM::unitNormal(faceOfPoints, globalPoints_);
     }
-    sum.normalise();
-    return sum;
+    return normalised(sum);
 }
 
 

@@ -4,7 +4,6 @@
 #include "OStringStream.H"
 #include "addToRunTimeSelectionTable.H"
 #include "coupledPolyPatch.H"
-#include "mapPolyMesh.H"
 #include "pointMesh.H"
 
 #include <stdexcept>
@@ -14,19 +13,9 @@ namespace Foam
 {
     defineTypeNameAndDebug(rbmRigidBodyMotionSolver, 0);
 
-    addToRunTimeSelectionTable
-    (
-        motionSolver,
-        rbmRigidBodyMotionSolver,
-        dictionary
-    );
-
-    addToRunTimeSelectionTable
-    (
-        displacementMotionSolver,
-        rbmRigidBodyMotionSolver,
-        displacement
-    );
+    // rbmMotionSolver: the name no other library registers (OpenFOAM v1912's
+    // librigidBodyMeshMotion.so registers rigidBodyMotionSolver for its 6-DoF solver).
+    RBM_ADD_MOTION_SOLVER_TO_SELECTION_TABLES(rbmRigidBodyMotionSolver, rbmMotionSolver);
 }
 
 
@@ -64,74 +53,52 @@ Foam::vector fixedNormalSlipNormal(const Foam::pointPatchField<Foam::vector>& fi
     field.write(os);
     Foam::IStringStream is(os.str());
     const Foam::dictionary dict(is);
-    return dict.get<Foam::vector>("n");
+    return Foam::vector(dict.lookup("n"));
+}
+
+// The entry that selects the motion solver, in the dictionary that holds the Coeffs block;
+// OpenFOAM v1912 also reads it under its old name.
+const Foam::word motionSolverKeyword("motionSolver");
+const Foam::word oldMotionSolverKeyword("solver");
+
+// rbm's own coefficients from the dictionary a selection table hands to the constructor.
+// OpenFOAM v1912 hands the whole dynamicMeshDict and OpenFOAM 13 the <name>Coeffs block, or
+// the whole mover dictionary when the block is absent; both then fall back to the enclosing
+// dictionary (coeffDict(), optionalSubDict()), whose other entries rbm's keyword check would
+// reject: the dynamicFvMesh, libs and the previous solver's entries (diffusivity, ...) a user
+// leaves there when switching a case with one line. The dictionary that selected the solver
+// has the motionSolver (or solver) entry; a Coeffs block has not. Absent block: every default.
+Foam::dictionary rbmCoefficients(const Foam::dictionary& dict)
+{
+    const Foam::word& keyword =
+        dict.found(motionSolverKeyword) ? motionSolverKeyword : oldMotionSolverKeyword;
+    if (!dict.found(keyword))
+    {
+        return dict;
+    }
+    const Foam::word blockName(Foam::word(dict.lookup(keyword)) + "Coeffs");
+    if (dict.isDict(blockName))
+    {
+        return dict.subDict(blockName);
+    }
+    Foam::dictionary empty;
+    empty.name() = dict.name() + '.' + blockName;
+    return empty;
 }
 
 } // End anonymous namespace
 
 
-Foam::rbmRigidBodyMotionSolver::rbmRigidBodyMotionSolver
-(
-    const polyMesh& mesh,
-    const IOdictionary& dict
-)
-:
-    displacementMotionSolver(mesh, dict, typeName),
-    writeInvalid_(false),
-    stepCount_(0)
-{
-    construct();
-}
-
-
-Foam::rbmRigidBodyMotionSolver::rbmRigidBodyMotionSolver
-(
-    const polyMesh& mesh,
-    const IOdictionary& dict,
-    const pointVectorField& pointDisplacement,
-    const pointIOField& points0
-)
-:
-    displacementMotionSolver(mesh, dict, pointDisplacement, points0, typeName),
-    writeInvalid_(false),
-    stepCount_(0)
-{
-    construct();
-}
-
-
 Foam::rbmRigidBodyMotionSolver::~rbmRigidBodyMotionSolver() = default;
 
 
-const Foam::dictionary& Foam::rbmRigidBodyMotionSolver::rbmCoefficients()
-{
-    // OpenFOAM's coeffDict() falls back to the whole dynamicMeshDict when the Coeffs block is
-    // absent; rbm's keyword check would then reject the dynamicFvMesh, motionSolverLibs and the
-    // previous solver's entries (diffusivity, ...) a user leaves there when switching a case
-    // with one line. rbm reads its own block only: absent means every default.
-    if (!coefficients_.valid())
-    {
-        const word blockName(typeName + "Coeffs");
-        if (found(blockName))
-        {
-            coefficients_.reset(new dictionary(subDict(blockName)));
-        }
-        else
-        {
-            coefficients_.reset(new dictionary());
-            coefficients_->name() = name() + '.' + blockName;
-        }
-    }
-    return *coefficients_;
-}
-
-
-void Foam::rbmRigidBodyMotionSolver::construct()
+void Foam::rbmRigidBodyMotionSolver::construct(const dictionary& dict)
 {
     const polyMesh& pMesh = mesh();
 
     // The coefficients rbm reads: rbmMoveMesh's keywords, without the plugin's own.
-    dictionary coefficients(rbmCoefficients());
+    coefficients_ = rbmCoefficients(dict);
+    dictionary coefficients(coefficients_);
     writeInvalid_ = coefficients.lookupOrDefault<bool>(writeInvalidKeyword, false);
     coefficients.remove(writeInvalidKeyword);
     OStringStream text;
@@ -203,14 +170,14 @@ void Foam::rbmRigidBodyMotionSolver::construct()
         (
             global.hostMesh(),
             text.str(),
-            rbmCoefficients().name(),
+            coefficients_.name(),
             boundary,
             pMesh.time().path()
         );
     }
     catch (const rbm::host::HostInputError& error)
     {
-        FatalIOErrorInFunction(rbmCoefficients())
+        FatalIOErrorInFunction(coefficients_)
             << error.what() << exit(FatalIOError);
     }
     catch (const std::exception& error)
@@ -264,20 +231,20 @@ void Foam::rbmRigidBodyMotionSolver::solve()
         (
             static_cast<int>(++stepCount_),
             runTime.value(),
-            runTime.timeName(),
+            rbmOpenFOAM::timeName(runTime),
             displacement_.data(),
             displacement_.size()
         );
     }
     catch (const rbm::host::HostInputError& error)
     {
-        FatalIOErrorInFunction(rbmCoefficients())
+        FatalIOErrorInFunction(coefficients_)
             << error.what() << exit(FatalIOError);
     }
     catch (const std::exception& error)
     {
         FatalErrorInFunction
-            << "rigidBodyMotionSolver: time " << runTime.timeName() << ": " << error.what()
+            << "rigidBodyMotionSolver: time " << rbmOpenFOAM::timeName(runTime) << ": " << error.what()
             << exit(FatalError);
     }
 
@@ -287,14 +254,14 @@ void Foam::rbmRigidBodyMotionSolver::solve()
     for (const std::string& warning : report.warnings)
     {
         WarningInFunction
-            << "rigidBodyMotionSolver: time " << runTime.timeName() << ": " << warning.c_str() << endl;
+            << "rigidBodyMotionSolver: time " << rbmOpenFOAM::timeName(runTime) << ": " << warning.c_str() << endl;
     }
     if (!report.valid)
     {
         if (writeInvalid_ && report.finite)
         {
             WarningInFunction
-                << "rigidBodyMotionSolver: time " << runTime.timeName() << ": "
+                << "rigidBodyMotionSolver: time " << rbmOpenFOAM::timeName(runTime) << ": "
                 << report.problem.c_str() << nl
                 << "    writeInvalid yes: the run goes on with this mesh, which is NOT valid"
                 << " for a flow solver." << endl;
@@ -302,17 +269,17 @@ void Foam::rbmRigidBodyMotionSolver::solve()
         else
         {
             FatalErrorInFunction
-                << "rigidBodyMotionSolver: time " << runTime.timeName() << ": "
+                << "rigidBodyMotionSolver: time " << rbmOpenFOAM::timeName(runTime) << ": "
                 << report.problem.c_str() << exit(FatalError);
         }
     }
 }
 
 
-void Foam::rbmRigidBodyMotionSolver::updateMesh(const mapPolyMesh&)
+void Foam::rbmRigidBodyMotionSolver::topologyChangeUnsupported() const
 {
     FatalErrorInFunction
-        << "rigidBodyMotionSolver (rbm) does not support topology changes (updateMesh):"
+        << "rigidBodyMotionSolver (rbm) does not support topology changes or redistribution:"
         << " its cell-neighbour graph and RBM problem belong to the initial topology."
         << exit(FatalError);
 }

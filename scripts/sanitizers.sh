@@ -20,11 +20,13 @@ build=build-asan
 jobs=${JOBS:-$(nproc)}
 start=$(date +%s)
 flags="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
-# The OpenFOAM plugin is left out: an instrumented librbmMotionSolver.so cannot be loaded by
+# The OpenFOAM plugins are left out: an instrumented librbmMotionSolver.so (or
+# librbmMotionSolverOF13.so) cannot be loaded by
 # OpenFOAM's uninstrumented programs (ASan's runtime must come first in the process), so its
 # tests report themselves skipped here and run in the plain build; the core it calls is
 # instrumented and tested through rbmMoveMesh and the HostMotionSolver tests.
 cmake -S . -B $build -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRBM_BUILD_OPENFOAM_PLUGIN=OFF \
+  -DRBM_BUILD_OPENFOAM13_PLUGIN=OFF \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" \
   -DCMAKE_CXX_FLAGS="$flags" \
   -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \

@@ -2,7 +2,9 @@
 # Installs rbm's build dependencies from Debian 12 packages (idempotent, quiet when
 # everything is already there), fetches OpenFOAM v1912's headers for the OpenFOAM plugin
 # (scripts/fetchOpenFOAMHeaders.sh: Debian ships OpenFOAM's libraries but no headers), then
-# configures and builds rbm and the plugin build/lib/librbmMotionSolver.so in ./build.
+# unpacks OpenFOAM 13 when its tarball is found (scripts/unpackOpenFOAM13.sh), then configures
+# and builds rbm and the plugins build/lib/librbmMotionSolver.so (OpenFOAM v1912) and
+# build/lib/librbmMotionSolverOF13.so (OpenFOAM 13, when unpacked) in ./build.
 #   scripts/setup.sh            install + build
 #   scripts/setup.sh --deps     install only
 set -euo pipefail
@@ -21,6 +23,7 @@ if [ ${#missing[@]} -gt 0 ]; then
   apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
 scripts/fetchOpenFOAMHeaders.sh
+scripts/unpackOpenFOAM13.sh
 [ "${1:-}" = "--deps" ] && exit 0
 
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null

@@ -1,7 +1,13 @@
-# Tests of the OpenFOAM plugin librbmMotionSolver.so (registered in tests/CMakeLists.txt):
-#   cmake -DMODE=<mode> -DRBM_PLUGIN=<librbmMotionSolver.so or empty> -DRBM_MOVE_MESH=<exe>
-#         -DRBM_COMPARE_POINTS=<exe> -DRBM_SOURCE_DIR=<source tree> -DRBM_WORK_DIR=<scratch>
-#         -P OpenFOAMPluginTest.cmake
+# Tests of the OpenFOAM plugin (registered in tests/CMakeLists.txt), on either OpenFOAM:
+#   cmake -DMODE=<mode> -DOPENFOAM=<1912 or 13> -DRBM_PLUGIN=<the plugin's .so or empty>
+#         -DRBM_MOVE_MESH=<exe> -DRBM_COMPARE_POINTS=<exe> -DRBM_SOURCE_DIR=<source tree>
+#         -DRBM_WORK_DIR=<scratch> [-DOPENFOAM13_DIR=<WM_PROJECT_DIR>] -P OpenFOAMPluginTest.cmake
+# OPENFOAM=1912: librbmMotionSolver.so in Debian's OpenFOAM v1912 (moveDynamicMesh, pimpleFoam).
+# OPENFOAM=13: librbmMotionSolverOF13.so in OpenFOAM 13 (foamRun -solver movingMesh, foamRun
+# -solver incompressibleFluid; every OpenFOAM program run with OPENFOAM13_DIR/etc/bashrc sourced).
+# The cases are written for v1912; for OpenFOAM 13 prepareCase translates them (the mover
+# dictionary, a PIMPLE block for movingMesh, physicalProperties and momentumTransport), and the
+# unit OpenFOAM 13 gives times in its log ("Time = 0.005s") is dropped, so the checks are the same.
 # The expectation is always rbmMoveMesh's own output on the same case and options (an
 # independent front door over the same core: its boundary conditions are rbm's, the plugin's
 # are OpenFOAM's), or OpenFOAM's own behaviour:
@@ -29,20 +35,43 @@
 #   parallel        the oscillatingChannel decomposed in two (decomposePar), 5 steps of
 #                   `mpirun -np 2 pimpleFoam -parallel`, reconstructPar: the points equal the
 #                   serial rbmMoveMesh's to 1e-8 (MPIEXEC: the mpiexec to use).
+#   aliasName       naca4415 with OpenFOAM's own librigidBodyMeshMotion.so loaded too (it
+#                   registers rigidBodyMotionSolver as well) and rbm selected as rbmMotionSolver
+#                   with an rbmMotionSolverCoeffs block (subSteps 2): equals rbmMoveMesh with
+#                   subSteps 2 to 1e-8, the log line's figures too.
 # Without the plugin the test prints "skipped: OpenFOAM not installed" (CTest: skipped).
 cmake_minimum_required(VERSION 3.20)
 include(${CMAKE_CURRENT_LIST_DIR}/CopyCaseInputs.cmake)
 
-if(NOT RBM_PLUGIN)
-  message("skipped: OpenFOAM not installed (the plugin librbmMotionSolver.so was not built; "
-          "scripts/setup.sh installs libopenfoam and fetches its headers)")
-  return()
-endif()
-
-# Debian's OpenFOAM binaries (/usr/bin) find their etc/ files through WM_PROJECT_DIR; nothing
-# else of OpenFOAM's environment is needed.
-if(NOT DEFINED ENV{WM_PROJECT_DIR})
-  set(ENV{WM_PROJECT_DIR} /usr/share/openfoam)
+if(OPENFOAM STREQUAL "13")
+  if(NOT RBM_PLUGIN)
+    message("skipped: OpenFOAM 13 not installed (the plugin librbmMotionSolverOF13.so was not "
+            "built: scripts/unpackOpenFOAM13.sh found no OpenFOAM 13 tarball to unpack into "
+            "third_party/; docs/openfoam13.md)")
+    return()
+  endif()
+  # OpenFOAM 13's programs need its environment (PATH, LD_LIBRARY_PATH with its MPI's Pstream):
+  # bash sources etc/bashrc, without arguments (it reads its own as settings), and runs the
+  # command. Lines, not semicolons, which would split the CMake list.
+  set(openfoamEnvironment bash -c "command=(\"\$@\")\nset --\nset +u\nsource '${OPENFOAM13_DIR}/etc/bashrc'\nexec \"\${command[@]}\"" openfoam13)
+  set(moveMesh foamRun -solver movingMesh)
+  set(flowSolver foamRun -solver incompressibleFluid)
+elseif(OPENFOAM STREQUAL "1912")
+  if(NOT RBM_PLUGIN)
+    message("skipped: OpenFOAM not installed (the plugin librbmMotionSolver.so was not built; "
+            "scripts/setup.sh installs libopenfoam and fetches its headers)")
+    return()
+  endif()
+  # Debian's OpenFOAM binaries (/usr/bin) find their etc/ files through WM_PROJECT_DIR; nothing
+  # else of OpenFOAM's environment is needed.
+  if(NOT DEFINED ENV{WM_PROJECT_DIR})
+    set(ENV{WM_PROJECT_DIR} /usr/share/openfoam)
+  endif()
+  set(openfoamEnvironment "")
+  set(moveMesh moveDynamicMesh)
+  set(flowSolver pimpleFoam)
+else()
+  message(FATAL_ERROR "OPENFOAM must be 1912 or 13, got '${OPENFOAM}'")
 endif()
 
 function(fail message)
@@ -57,13 +86,63 @@ function(expectContains text what where)
 endfunction()
 
 # A fresh copy of a case's inputs; its dynamicMeshDict loads the plugin by its full path.
+# OpenFOAM 13: the entries after the FoamFile header go into `mover { type motionSolver; libs
+# (...); ... }` (without dynamicFvMesh), movingMesh gets the PIMPLE block it requires,
+# incompressibleFluid its physicalProperties and momentumTransport (v1912's transportProperties
+# and turbulenceProperties) and decomposePar its <method>Coeffs (v1912 reads coeffs too).
 function(prepareCase source destination)
   file(REMOVE_RECURSE ${destination})
   copyCaseInputs(${source} ${destination})
   file(READ ${destination}/constant/dynamicMeshDict text)
   string(REGEX REPLACE "motionSolverLibs[^;]*;" "" text "${text}")
-  string(REGEX REPLACE "(\n[ \t]*motionSolver[ \t])" "\nmotionSolverLibs (\"${RBM_PLUGIN}\");\\1" text "${text}")
-  file(WRITE ${destination}/constant/dynamicMeshDict "${text}")
+  if(NOT OPENFOAM STREQUAL "13")
+    string(REGEX REPLACE "(\n[ \t]*motionSolver[ \t])" "\nmotionSolverLibs (\"${RBM_PLUGIN}\");\\1" text "${text}")
+    file(WRITE ${destination}/constant/dynamicMeshDict "${text}")
+    return()
+  endif()
+  string(REGEX REPLACE "dynamicFvMesh[^;]*;" "" text "${text}")
+  string(REGEX MATCH "^.*FoamFile[ \t\n]*{[^}]*}" header "${text}")
+  if(NOT header)
+    fail("${source}/constant/dynamicMeshDict has no FoamFile header")
+  endif()
+  string(LENGTH "${header}" headerLength)
+  string(SUBSTRING "${text}" ${headerLength} -1 body)
+  file(WRITE ${destination}/constant/dynamicMeshDict
+       "${header}\n\nmover\n{\n    type motionSolver;\n    libs (\"${RBM_PLUGIN}\");\n${body}\n}\n")
+  file(READ ${destination}/system/fvSolution text)
+  if(NOT text MATCHES "\nPIMPLE")
+    file(APPEND ${destination}/system/fvSolution "\nPIMPLE\n{\n}\n")
+  endif()
+  if(EXISTS ${destination}/constant/transportProperties)
+    file(READ ${destination}/constant/transportProperties text)
+    string(REGEX MATCH "\nnu[ \t]+([^;]*);" nu "${text}")
+    file(WRITE ${destination}/constant/physicalProperties
+         "FoamFile { version 2.0; format ascii; class dictionary; object physicalProperties; }\n"
+         "viscosityModel constant;\nnu [0 2 -1 0 0 0 0] ${CMAKE_MATCH_1};\n")
+    file(REMOVE ${destination}/constant/transportProperties)
+  endif()
+  # OpenFOAM 13 reads a decomposition method's coefficients from <method>Coeffs only.
+  if(EXISTS ${destination}/system/decomposeParDict)
+    file(READ ${destination}/system/decomposeParDict text)
+    string(REGEX MATCH "\nmethod[ \t]+([a-zA-Z]+);" method "${text}")
+    string(REGEX REPLACE "\ncoeffs([ \t\n]*{)" "\n${CMAKE_MATCH_1}Coeffs\\1" text "${text}")
+    file(WRITE ${destination}/system/decomposeParDict "${text}")
+  endif()
+  if(EXISTS ${destination}/constant/turbulenceProperties)
+    file(RENAME ${destination}/constant/turbulenceProperties ${destination}/constant/momentumTransport)
+  endif()
+endfunction()
+
+# Adds entries beside motionSolver: at the end of dynamicMeshDict (v1912), inside the mover
+# dictionary, which prepareCase made its last entry (OpenFOAM 13).
+function(addMotionSolverEntries case entries)
+  file(READ ${case}/constant/dynamicMeshDict text)
+  if(OPENFOAM STREQUAL "13")
+    string(REGEX REPLACE "}[ \t\n]*$" "${entries}\n}\n" text "${text}")
+  else()
+    string(APPEND text "\n${entries}\n")
+  endif()
+  file(WRITE ${case}/constant/dynamicMeshDict "${text}")
 endfunction()
 
 # runIn(<case> <expected: 0 or FAIL> <log name> command...): runs in the case folder, output in
@@ -79,6 +158,14 @@ function(runIn case expected name)
   elseif(NOT status EQUAL expected)
     fail("${ARGN} in ${case}: exit status ${status}, expected ${expected}:\n${out}")
   endif()
+  set(${name}_out "${out}" PARENT_SCOPE)
+endfunction()
+
+# runOpenFOAM(<case> <expected> <log name> command...): runIn with OpenFOAM's environment; the
+# unit of OpenFOAM 13's time lines ("Time = 0.005s") dropped, so that the checks read both logs.
+function(runOpenFOAM case expected name)
+  runIn(${case} ${expected} ${name} ${openfoamEnvironment} ${ARGN})
+  string(REGEX REPLACE "\nTime = ([0-9.e+-]+)s\n" "\nTime = \\1\n" out "${${name}_out}")
   set(${name}_out "${out}" PARENT_SCOPE)
 endfunction()
 
@@ -161,7 +248,7 @@ function(compareOneStep tutorial tolerance expected)
   copyCaseInputs(${RBM_SOURCE_DIR}/tutorials/${tutorial} ${rbmCase})
   prepareCase(${RBM_SOURCE_DIR}/tutorials/${tutorial} ${pluginCase})
   runIn(${rbmCase} 0 rbmMoveMesh ${RBM_MOVE_MESH} -noVTK)
-  runIn(${pluginCase} 0 moveDynamicMesh moveDynamicMesh)
+  runOpenFOAM(${pluginCase} 0 moveDynamicMesh ${moveMesh})
   expectContains("${moveDynamicMesh_out}" "${expected}" "moveDynamicMesh's log")
   comparePoints(${rbmCase}/1/polyMesh/points.gz ${pluginCase}/1/polyMesh/points.gz ${tolerance})
   stepFigures("${rbmMoveMesh_out}" 1 rbmLine)
@@ -176,9 +263,11 @@ endfunction()
 macro(prepareChannelWithReference)
   set(source ${RBM_SOURCE_DIR}/tests/data/openfoamPlugin/oscillatingChannel)
   prepareCase(${source} ${pluginCase})
-  runIn(${pluginCase} 0 blockMesh blockMesh)
+  runOpenFOAM(${pluginCase} 0 blockMesh blockMesh)
   file(REMOVE_RECURSE ${rbmCase})
   file(COPY ${pluginCase}/ DESTINATION ${rbmCase})
+  # rbmMoveMesh reads the v1912 form of dynamicMeshDict (OpenFOAM 13's mover is prepareCase's).
+  file(COPY ${source}/constant/dynamicMeshDict DESTINATION ${rbmCase}/constant)
   runIn(${rbmCase} 0 rbmMoveMesh ${RBM_MOVE_MESH} -noVTK)
 endmacro()
 
@@ -196,21 +285,22 @@ elseif(MODE STREQUAL "oneLineSwitch")
   prepareCase(${RBM_SOURCE_DIR}/tutorials/naca4415 ${pluginCase})
   file(READ ${pluginCase}/constant/dynamicMeshDict text)
   string(REGEX REPLACE "rigidBodyMotionSolverCoeffs[ \t\n]*{[^}]*}" "" text "${text}")
-  string(APPEND text "\ndiffusivity  quadratic inverseDistance (airfoil);\n"
-         "displacementLaplacianCoeffs\n{\n    diffusivity quadratic inverseDistance (airfoil);\n}\n"
-         "mass 2.1;\n")
   file(WRITE ${pluginCase}/constant/dynamicMeshDict "${text}")
+  set(previousSolverEntries "diffusivity  quadratic inverseDistance (airfoil);
+displacementLaplacianCoeffs\n{\n    diffusivity quadratic inverseDistance (airfoil);\n}\nmass 2.1;")
+  addMotionSolverEntries(${pluginCase} "${previousSolverEntries}")
+  file(READ ${pluginCase}/constant/dynamicMeshDict text)
   string(FIND "${text}" "rigidBodyMotionSolverCoeffs" block)
   if(NOT block EQUAL -1)
     fail("the case still has a rigidBodyMotionSolverCoeffs block:\n${text}")
   endif()
   runIn(${rbmCase} 0 rbmMoveMesh ${RBM_MOVE_MESH} -noVTK)
-  runIn(${pluginCase} 0 moveDynamicMesh moveDynamicMesh)
+  runOpenFOAM(${pluginCase} 0 moveDynamicMesh ${moveMesh})
   comparePoints(${rbmCase}/1/polyMesh/points.gz ${pluginCase}/1/polyMesh/points.gz 1e-8)
   # A misspelt entry inside the block is still an error that names it.
-  file(APPEND ${pluginCase}/constant/dynamicMeshDict "rigidBodyMotionSolverCoeffs\n{\n    subStep 3;\n}\n")
+  addMotionSolverEntries(${pluginCase} "rigidBodyMotionSolverCoeffs\n{\n    subStep 3;\n}")
   file(REMOVE_RECURSE ${pluginCase}/1)
-  runIn(${pluginCase} FAIL moveDynamicMesh moveDynamicMesh)
+  runOpenFOAM(${pluginCase} FAIL moveDynamicMesh ${moveMesh})
   expectContains("${moveDynamicMesh_out}" "FOAM FATAL IO ERROR" "moveDynamicMesh's output")
   expectContains("${moveDynamicMesh_out}" "subStep" "moveDynamicMesh's output")
 
@@ -243,15 +333,24 @@ boundary
     frontAndBack { type empty; faces ((0 3 2 1) (4 5 6 7) (8 11 10 9) (12 13 14 15)); }
 );
 ]=])
+  set(interfaceType cyclicAMI)
+  if(OPENFOAM STREQUAL "13")
+    # OpenFOAM 13 has no cyclicAMI (its non-conformal couplings are made by
+    # createNonConformalCouples): a plain cyclic pair, the right block as fine as the left.
+    set(interfaceType cyclic)
+    string(REPLACE "cyclicAMI" "cyclic" text "${text}")
+    string(REPLACE "transform noOrdering; " "" text "${text}")
+    string(REPLACE "(8 13 1)" "(8 16 1)" text "${text}")
+  endif()
   file(WRITE ${pluginCase}/system/blockMeshDict "${text}")
   file(READ ${pluginCase}/0/pointDisplacement text)
   string(REGEX REPLACE "(frontAndBack)"
-         "leftInterface { type cyclicAMI; }\n    rightInterface { type cyclicAMI; }\n    \\1" text "${text}")
+         "leftInterface { type ${interfaceType}; }\n    rightInterface { type ${interfaceType}; }\n    \\1" text "${text}")
   file(WRITE ${pluginCase}/0/pointDisplacement "${text}")
-  runIn(${pluginCase} 0 blockMesh blockMesh)
-  runIn(${pluginCase} FAIL moveDynamicMesh moveDynamicMesh)
+  runOpenFOAM(${pluginCase} 0 blockMesh blockMesh)
+  runOpenFOAM(${pluginCase} FAIL moveDynamicMesh ${moveMesh})
   expectContains("${moveDynamicMesh_out}" "FOAM FATAL ERROR" "moveDynamicMesh's output")
-  expectContains("${moveDynamicMesh_out}" "patch leftInterface is of type cyclicAMI" "moveDynamicMesh's output")
+  expectContains("${moveDynamicMesh_out}" "patch leftInterface is of type ${interfaceType}" "moveDynamicMesh's output")
   file(GLOB written ${pluginCase}/0.*)
   if(written)
     fail("a refused case wrote ${written}")
@@ -262,7 +361,7 @@ elseif(MODE STREQUAL "serial3D")
 
 elseif(MODE STREQUAL "flowSteps")
   prepareChannelWithReference()
-  runIn(${pluginCase} 0 pimpleFoam pimpleFoam)
+  runOpenFOAM(${pluginCase} 0 pimpleFoam ${flowSolver})
   # Five steps, each with the plugin's log line, and pimpleFoam's end.
   foreach(time 0.005 0.01 0.015 0.02 0.025)
     stepFigures("${pimpleFoam_out}" ${time} line)
@@ -290,16 +389,16 @@ elseif(MODE STREQUAL "restart")
     addCoefficient(${case} "displacementTolerance 0;")
   endforeach()
   runIn(${rbmCase} 0 rbmMoveMesh ${RBM_MOVE_MESH} -noVTK)
-  runIn(${pluginCase} 0 moveDynamicMesh moveDynamicMesh)
+  runOpenFOAM(${pluginCase} 0 moveDynamicMesh ${moveMesh})
   foreach(time 0.075 0.15)
     comparePoints(${rbmCase}/${time}/polyMesh/points.gz ${pluginCase}/${time}/polyMesh/points.gz 1e-8)
   endforeach()
   # Stopped after three steps, restarted from the latest written time.
   setControl(${restartCase} endTime 0.075)
-  runIn(${restartCase} 0 firstPart moveDynamicMesh)
+  runOpenFOAM(${restartCase} 0 firstPart ${moveMesh})
   setControl(${restartCase} endTime 0.15)
   setControl(${restartCase} startFrom latestTime)
-  runIn(${restartCase} 0 secondPart moveDynamicMesh)
+  runOpenFOAM(${restartCase} 0 secondPart ${moveMesh})
   expectContains("${secondPart_out}" "Create mesh for time = 0.075" "the restart's log")
   string(FIND "${secondPart_out}" "Time = 0.025 " rerun)
   if(NOT rerun EQUAL -1)
@@ -311,7 +410,7 @@ elseif(MODE STREQUAL "restart")
 elseif(MODE STREQUAL "badCoefficient")
   prepareCase(${RBM_SOURCE_DIR}/tutorials/naca4415 ${pluginCase})
   setCoefficients(${pluginCase} "    coupling bogus;")
-  runIn(${pluginCase} FAIL moveDynamicMesh moveDynamicMesh)
+  runOpenFOAM(${pluginCase} FAIL moveDynamicMesh ${moveMesh})
   expectContains("${moveDynamicMesh_out}" "FOAM FATAL IO ERROR" "moveDynamicMesh's output")
   expectContains("${moveDynamicMesh_out}" "coupling" "moveDynamicMesh's output")
   expectContains("${moveDynamicMesh_out}" "bogus" "moveDynamicMesh's output")
@@ -320,7 +419,7 @@ elseif(MODE STREQUAL "badCoefficient")
     fail("a run with a bad coefficient wrote time 1")
   endif()
   setCoefficients(${pluginCase} "    writeInvalid maybe;")
-  runIn(${pluginCase} FAIL moveDynamicMesh moveDynamicMesh)
+  runOpenFOAM(${pluginCase} FAIL moveDynamicMesh ${moveMesh})
   expectContains("${moveDynamicMesh_out}" "FOAM FATAL IO ERROR" "moveDynamicMesh's output")
   expectContains("${moveDynamicMesh_out}" "maybe" "moveDynamicMesh's output")
 
@@ -344,7 +443,7 @@ elseif(MODE STREQUAL "invertedCells")
     fail("rbmMoveMesh did not report inverted cells:\n${rbmMoveMesh_out}")
   endif()
   set(count ${CMAKE_MATCH_1})
-  runIn(${pluginCase} FAIL moveDynamicMesh moveDynamicMesh)
+  runOpenFOAM(${pluginCase} FAIL moveDynamicMesh ${moveMesh})
   expectContains("${moveDynamicMesh_out}" "FOAM FATAL ERROR" "moveDynamicMesh's output")
   expectContains("${moveDynamicMesh_out}" "the moved mesh has ${count} inverted cell" "moveDynamicMesh's output")
   # The advice names the robust choices these coefficients leave out.
@@ -354,27 +453,59 @@ elseif(MODE STREQUAL "invertedCells")
     fail("a step with inverted cells was written")
   endif()
   setCoefficients(${pluginCase} "${coefficients}\n    writeInvalid yes;")
-  runIn(${pluginCase} 0 moveDynamicMesh moveDynamicMesh)
+  runOpenFOAM(${pluginCase} 0 moveDynamicMesh ${moveMesh})
   expectContains("${moveDynamicMesh_out}" "the moved mesh has ${count} inverted cell" "moveDynamicMesh's output")
   expectContains("${moveDynamicMesh_out}" "writeInvalid yes" "moveDynamicMesh's output")
 
+elseif(MODE STREQUAL "aliasName")
+  # OpenFOAM's own 6-DoF library registers rigidBodyMotionSolver too; loaded first, it keeps
+  # that name, and rbm is selected by its own name with its own block.
+  file(REMOVE_RECURSE ${rbmCase})
+  copyCaseInputs(${RBM_SOURCE_DIR}/tutorials/naca4415 ${rbmCase})
+  prepareCase(${RBM_SOURCE_DIR}/tutorials/naca4415 ${pluginCase})
+  setCoefficients(${rbmCase} "    subSteps 2;")
+  setCoefficients(${pluginCase} "    subSteps 2;")
+  file(READ ${pluginCase}/constant/dynamicMeshDict text)
+  string(REPLACE "(\"${RBM_PLUGIN}\")" "(\"librigidBodyMeshMotion.so\" \"${RBM_PLUGIN}\")" text "${text}")
+  string(REGEX REPLACE "motionSolver([ \t]+)rigidBodyMotionSolver;" "motionSolver\\1rbmMotionSolver;" text "${text}")
+  string(REPLACE "rigidBodyMotionSolverCoeffs" "rbmMotionSolverCoeffs" text "${text}")
+  file(WRITE ${pluginCase}/constant/dynamicMeshDict "${text}")
+  expectContains("${text}" "librigidBodyMeshMotion.so" "the alias case's dynamicMeshDict")
+  expectContains("${text}" "rbmMotionSolverCoeffs" "the alias case's dynamicMeshDict")
+  runIn(${rbmCase} 0 rbmMoveMesh ${RBM_MOVE_MESH} -noVTK)
+  runOpenFOAM(${pluginCase} 0 moveDynamicMesh ${moveMesh})
+  expectContains("${moveDynamicMesh_out}" "Selecting motion solver: rbmMotionSolver" "the plugin's log")
+  comparePoints(${rbmCase}/1/polyMesh/points.gz ${pluginCase}/1/polyMesh/points.gz 1e-8)
+  stepFigures("${rbmMoveMesh_out}" 1 rbmLine)
+  stepFigures("${moveDynamicMesh_out}" 1 pluginLine)
+  expectContains("${rbmLine}" "sub-steps  2" "rbmMoveMesh's log line")
+  if(NOT rbmLine STREQUAL pluginLine)
+    fail("the plugin's log line differs from rbmMoveMesh's:\n  ${pluginLine}\n  ${rbmLine}")
+  endif()
+
 elseif(MODE STREQUAL "parallel")
   prepareChannelWithReference()
-  runIn(${pluginCase} 0 decomposePar decomposePar)
+  runOpenFOAM(${pluginCase} 0 decomposePar decomposePar)
   # Open MPI refuses root without --allow-run-as-root; 2 ranks on fewer cores need --oversubscribe.
   execute_process(COMMAND id -u OUTPUT_VARIABLE uid OUTPUT_STRIP_TRAILING_WHITESPACE)
   set(mpiOptions -np 2 --oversubscribe)
   if(uid STREQUAL "0")
     list(APPEND mpiOptions --allow-run-as-root)
   endif()
-  runIn(${pluginCase} 0 pimpleFoam ${MPIEXEC} ${mpiOptions} -x WM_PROJECT_DIR pimpleFoam -parallel)
+  # Open MPI started by its full path (/usr/bin/mpiexec) acts as --prefix /usr and puts /usr/lib
+  # first in the ranks' LD_LIBRARY_PATH, where Debian's OpenFOAM v1912 libraries would then
+  # shadow OpenFOAM 13's.
+  if(OPENFOAM STREQUAL "13")
+    list(APPEND mpiOptions --noprefix)
+  endif()
+  runOpenFOAM(${pluginCase} 0 pimpleFoam ${MPIEXEC} ${mpiOptions} -x WM_PROJECT_DIR ${flowSolver} -parallel)
   expectContains("${pimpleFoam_out}" "gathered from the processors" "pimpleFoam's log")
   foreach(time 0.005 0.01 0.015 0.02 0.025)
     stepFigures("${pimpleFoam_out}" ${time} line)
     expectContains("${line}" "inverted 0" "the log line of time ${time}")
   endforeach()
   expectContains("${pimpleFoam_out}" "\nEnd" "pimpleFoam's log")
-  runIn(${pluginCase} 0 reconstructPar reconstructPar -latestTime)
+  runOpenFOAM(${pluginCase} 0 reconstructPar reconstructPar -latestTime)
   comparePoints(${rbmCase}/0.025/polyMesh/points ${pluginCase}/0.025/polyMesh/points 1e-8)
 
 else()
