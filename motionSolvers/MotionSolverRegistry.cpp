@@ -20,17 +20,41 @@ std::vector<std::string> MotionSolverRegistry::names() const
     return result;
 }
 
+namespace {
+
+// The dictionary that names the motion solver: OpenFOAM 13 puts it into `mover { type
+// motionSolver; motionSolver ...; }`, v1912 at the top level of dynamicMeshDict.
+const io::Dictionary& motionSolverDictionary(const io::Dictionary& dynamicMeshDict)
+{
+    const io::Entry* moverEntry = dynamicMeshDict.find("mover");
+    if (!moverEntry) return dynamicMeshDict;
+    if (!moverEntry->isDictionary())
+        throw InputError(moverEntry->file(), moverEntry->line(),
+                         "'mover' must be a dictionary (OpenFOAM 13: mover { type motionSolver; motionSolver ...; })");
+    const io::Dictionary& mover = moverEntry->dictionary();
+    if (mover.contains("type") && mover.get<std::string>("type") != "motionSolver") {
+        const io::Entry& type = mover.lookup("type");
+        throw InputError(type.file(), type.line(),
+                         "mover type " + mover.get<std::string>("type") +
+                             ": rbmMoveMesh moves meshes with a motion solver only; expected 'type motionSolver;'");
+    }
+    return mover;
+}
+
+} // namespace
+
 std::unique_ptr<MotionSolver> MotionSolverRegistry::create(const PolyMesh& mesh, const io::Dictionary& dynamicMeshDict,
                                                            const io::Dictionary* pointDisplacement,
                                                            const std::filesystem::path& caseDirectory) const
 {
-    const char* keyword = dynamicMeshDict.contains("motionSolver") ? "motionSolver" : "solver";
-    if (!dynamicMeshDict.contains(keyword)) {
-        throw InputError(dynamicMeshDict.file(), 0,
+    const io::Dictionary& dictionary = motionSolverDictionary(dynamicMeshDict);
+    const char* keyword = dictionary.contains("motionSolver") ? "motionSolver" : "solver";
+    if (!dictionary.contains(keyword)) {
+        throw InputError(dictionary.file(), dictionary.line(),
                          "keyword 'motionSolver' (or 'solver') is missing: it names the motion solver");
     }
-    const io::Entry& entry = dynamicMeshDict.lookup(keyword);
-    const std::string name = dynamicMeshDict.get<std::string>(keyword);
+    const io::Entry& entry = dictionary.lookup(keyword);
+    const std::string name = dictionary.get<std::string>(keyword);
     const auto factory = factories_.find(name);
     if (factory == factories_.end()) {
         std::string valid;
@@ -38,20 +62,23 @@ std::unique_ptr<MotionSolver> MotionSolverRegistry::create(const PolyMesh& mesh,
         throw InputError(entry.file(), entry.line(),
                          "Unknown motionSolver type " + name + ". Valid motionSolver types are: " + valid);
     }
-    const io::Dictionary* coefficients = dynamicMeshDict.findDictionary(name + "Coeffs");
-    const io::Dictionary empty(dynamicMeshDict.name() + "/" + name + "Coeffs", dynamicMeshDict.file(), 0);
+    const io::Dictionary* coefficients = dictionary.findDictionary(name + "Coeffs");
+    const io::Dictionary empty(dictionary.name() + "/" + name + "Coeffs", dictionary.file(), 0);
     return factory->second(mesh, coefficients ? *coefficients : empty, pointDisplacement, caseDirectory);
 }
 
 void registerBuiltinMotionSolvers(MotionSolverRegistry& registry)
 {
-    registry.add(std::string(RigidBodyMotionSolver::typeNameString),
-                 [](const PolyMesh& mesh, const io::Dictionary& coefficients, const io::Dictionary* pointDisplacement,
-                    const std::filesystem::path& caseDirectory) -> std::unique_ptr<MotionSolver> {
-                     return std::make_unique<RigidBodyMotionSolver>(
-                         mesh, coefficients, makePatchBoundaryConditions(mesh, pointDisplacement, caseDirectory),
-                         caseDirectory);
-                 });
+    const MotionSolverFactory rbm = [](const PolyMesh& mesh, const io::Dictionary& coefficients,
+                                       const io::Dictionary* pointDisplacement,
+                                       const std::filesystem::path& caseDirectory) -> std::unique_ptr<MotionSolver> {
+        return std::make_unique<RigidBodyMotionSolver>(
+            mesh, coefficients, makePatchBoundaryConditions(mesh, pointDisplacement, caseDirectory), caseDirectory);
+    };
+    registry.add(std::string(RigidBodyMotionSolver::typeNameString), rbm);
+    // The plugin's second name, which does not collide with OpenFOAM's own 6-DoF
+    // rigidBodyMotionSolver: a case switched with it moves the same in rbmMoveMesh.
+    registry.add("rbmMotionSolver", rbm);
 }
 
 const MotionSolverRegistry& builtinMotionSolvers()

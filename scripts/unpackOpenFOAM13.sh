@@ -4,9 +4,9 @@
 # build/lib/librbmMotionSolverOF13.so. The tarball is not in the repository (64 MB); it is looked
 # for, first found wins, in
 #   1. $RBM_OPENFOAM13_TARBALL (the .tgz itself),
-#   2. the folder shared/openfoam-13 beside the repository (../shared/openfoam-13 from its root),
-#   3. the same beside the main checkout of a git worktree (its common .git folder's parent),
-#   4. /work/shared/openfoam-13 (where these machines keep it; a fresh clone in /tmp still finds it).
+#   2.–4. where rbm's build machines keep it: a shared/openfoam-13 folder beside the repository,
+#      beside the main checkout of a git worktree, or at one fixed path (so that a fresh clone
+#      anywhere on such a machine finds it).
 # Not found: a message saying so and exit status 0: rbm and the v1912 plugin build without it
 # and the OpenFOAM 13 plugin's tests report skipped. Idempotent: when
 # third_party/OpenFOAM-13/etc/bashrc exists it does nothing.

@@ -168,7 +168,7 @@ INSTANTIATE_TEST_SUITE_P(
                    "a patch cannot both move and slide", "Expected type symmetryPlane"}},
         // --- dynamicMeshDict and controlDict ---------------------------------------------------
         Malformed{"misspeltSolverName", "constant/dynamicMeshDict", 10,
-                  {"Unknown motionSolver type rigidBodyMotionSolvr. Valid motionSolver types are: rigidBodyMotionSolver"}},
+                  {"Unknown motionSolver type rigidBodyMotionSolvr. Valid motionSolver types are: rbmMotionSolver rigidBodyMotionSolver"}},
         Malformed{"misspeltKeyword", "constant/dynamicMeshDict", 13,
                   {"unknown keyword 'formulaton'", "Valid keywords are: coupling formulation"}},
         Malformed{"negativeDeltaT", "system/controlDict", 14, {"entry 'deltaT'", "must be > 0, found -0.1"}},

@@ -292,8 +292,32 @@ TEST(RigidBodyMotionSolverSelection, UnknownSolverNameListsTheValidOnes)
     } catch (const InputError& error) {
         EXPECT_EQ(error.line(), 3);
         EXPECT_NE(error.message().find("rigidBodyMotionSolvr"), std::string::npos) << error.what();
-        EXPECT_NE(error.message().find("Valid motionSolver types are: rigidBodyMotionSolver"), std::string::npos)
+        EXPECT_NE(error.message().find("Valid motionSolver types are: rbmMotionSolver rigidBodyMotionSolver"), std::string::npos)
             << error.what();
+    }
+}
+
+TEST(RigidBodyMotionSolverSelection, OpenFOAM13sMoverBlockAndTheSecondNameSelectRbmWithTheirCoefficients)
+{
+    const PolyMesh mesh = makeHexBox(1, 1, 1, {0, 0, 0}, {1, 1, 1});
+    // OpenFOAM 13: the solver and its coefficients inside `mover`.
+    const io::Dictionary mover = parse("mover\n{\n    type motionSolver;\n    libs (\"librbmMotionSolverOF13.so\");\n"
+                                       "    motionSolver rigidBodyMotionSolver;\n"
+                                       "    rigidBodyMotionSolverCoeffs { weighting uniform; }\n}\n");
+    EXPECT_EQ(asRbm(*builtinMotionSolvers().create(mesh, mover, nullptr, "/nonexistent/case")).options().weighting,
+              EdgeWeighting::uniform);
+    // The name that does not collide with OpenFOAM's 6-DoF solver, with its own coefficients block.
+    const io::Dictionary alias = parse("motionSolver rbmMotionSolver;\nrbmMotionSolverCoeffs { weighting inverseDistance; }\n");
+    EXPECT_EQ(asRbm(*builtinMotionSolvers().create(mesh, alias, nullptr, "/nonexistent/case")).options().weighting,
+              EdgeWeighting::inverseDistance);
+    // Another kind of mover is not a motion solver: an error at its line.
+    const io::Dictionary refiner = parse("mover\n{\n    type refiner;\n}\n");
+    try {
+        builtinMotionSolvers().create(mesh, refiner, nullptr, "/nonexistent/case");
+        FAIL() << "expected an InputError";
+    } catch (const InputError& error) {
+        EXPECT_EQ(error.line(), 3);
+        EXPECT_NE(error.message().find("expected 'type motionSolver;'"), std::string::npos) << error.what();
     }
 }
 
