@@ -2,6 +2,7 @@
 
 #include "CellNeighbourGraph.hpp"
 #include "CellSizeRatio.hpp"
+#include "CurvedPatchProjection.hpp"
 #include "EdgeStiffening.hpp"
 #include "InputError.hpp"
 #include "InvertedCellCounter.hpp"
@@ -29,7 +30,8 @@
 
 // The solver is a driver over named parts, each in its own file:
 //   node classes       NodeClasses (which nodes are prescribed, slide or float; their groups)
-//   unconstrained      UnconstrainedPatches (zeroGradient-like patches slide or float)
+//   unconstrained      UnconstrainedPatches (zeroGradient-like patches slide or float),
+//                      CurvedPatchProjection (and stay on their surface where it is curved)
 //   stiffening         EdgeStiffening (the edge factors in effect, `stiffening auto`'s rule)
 //   the solver object  RbmSolverSelection (options → the variant's solver)
 //   sub-stepping       subStepping/ (the boundary's path, the count, halving on inversion)
@@ -77,11 +79,18 @@ struct RigidBodyMotionSolver::Impl {
     std::vector<std::uint8_t> pointIsPrescribed;  // per mesh point: written by a condition, not by the solver
     std::unique_ptr<RbmProblem> problem;
     std::unique_ptr<RbmSolver> baseSolver;  // for `problem`, kept between solve() calls
+    CurvedPatchProjection curvedPatches;    // of the current node classes
     std::uint64_t problemBoundaryRevision = 0;  // owner.boundaryRevision() the node classes were derived from
 
     RbmState state;
     bool hasState = false;
     std::vector<Vector3> statePrescribed;  // the prescribed displacement `state` belongs to
+    // What is written: the state, its points on curved unconstrained patches put back onto
+    // their surface (projected: else the state itself). The state stays the solver's, the warm
+    // start of the next solve.
+    std::vector<Vector3> projected;
+    bool useProjected = false;
+    const std::vector<Vector3>& written() const { return useProjected ? projected : state.displacement; }
 
     Impl(RigidBodyMotionSolver& solver, RigidBodyMotionOptions solverOptions);
 
@@ -102,6 +111,9 @@ struct RigidBodyMotionSolver::Impl {
     // The untangling stage: when state leaves inverted cells that the initial mesh did not
     // have, moves the points around them until none is; the reason tells.
     void untangleState(MotionSolveReport& report);
+    // `written` from the state: projected onto the curved unconstrained patches, unless that
+    // inverts cells the state does not (then the state, with a warning).
+    void prepareWritten(MotionSolveReport& report);
     void writeBack();
 
     // smallestCellSizeRatio (src/CellSizeRatio.hpp) of the current state.
@@ -169,6 +181,7 @@ void RigidBodyMotionSolver::Impl::updateProblem()
     baseSolver.reset();
     problem.reset();
     problem = problemAround(referencePoints, std::move(classes));
+    curvedPatches = CurvedPatchProjection(owner.mesh(), owner.points0(), twoD.get(), conditions, unconstrained, *problem);
 }
 
 std::unique_ptr<RbmProblem> RigidBodyMotionSolver::Impl::problemAround(std::vector<Vector3> points,
@@ -216,11 +229,27 @@ void RigidBodyMotionSolver::Impl::untangleState(MotionSolveReport& report)
     report.reason += outcome.reason;
 }
 
+void RigidBodyMotionSolver::Impl::prepareWritten(MotionSolveReport& report)
+{
+    useProjected = false;
+    if (curvedPatches.empty() || !hasState) return;
+    projected = state.displacement;
+    curvedPatches.project(referencePoints, projected);
+    const Label before = inverted.count(state.displacement);
+    useProjected = inverted.count(projected) <= before;
+    if (useProjected) return;
+    std::string names;
+    for (const std::string& name : curvedPatches.patchNames(owner.mesh())) names += (names.empty() ? "" : " ") + name;
+    report.warnings.push_back("the points of the curved patches (" + names +
+                              ") were left on their tangent planes: put back onto the patches' surfaces they "
+                              "inverted cells");
+}
+
 void RigidBodyMotionSolver::Impl::writeBack()
 {
     std::vector<Vector3>& displacement = owner.pointDisplacement();
     if (twoD) {
-        const std::vector<Vector3> lifted = twoD->liftDisplacements(state.displacement);
+        const std::vector<Vector3> lifted = twoD->liftDisplacements(written());
         for (std::size_t p = 0; p < lifted.size(); ++p) {
             const Label node = twoD->nodeOfPoint[p];
             if (node < 0 || pointIsPrescribed[p]) continue;
@@ -229,7 +258,7 @@ void RigidBodyMotionSolver::Impl::writeBack()
     } else {
         for (int node = 0; node < nodeCount(); ++node) {
             if (pointIsPrescribed[node]) continue;
-            displacement[node] = prescribingPatch[node] == heldNode ? Vector3{} : state.displacement[node];
+            displacement[node] = prescribingPatch[node] == heldNode ? Vector3{} : written()[node];
         }
     }
 }
@@ -239,7 +268,7 @@ double RigidBodyMotionSolver::Impl::smallestCellSizeRatio() const
     if (!twoD) return rbm::smallestCellSizeRatio(owner.mesh(), owner.points0(), owner.curPoints());
     std::vector<Vector3> moved(referencePoints.size());
     for (std::size_t node = 0; node < moved.size(); ++node)
-        moved[node] = referencePoints[node] + (hasState ? state.displacement[node] : Vector3{});
+        moved[node] = referencePoints[node] + (hasState ? written()[node] : Vector3{});
     return rbm::smallestCellSizeRatio(twoD->planar, moved);
 }
 
@@ -490,9 +519,11 @@ MotionSolveReport RigidBodyMotionSolver::solve()
         impl.statePrescribed = target;
         impl.untangleState(report);
     }
+    impl.prepareWritten(report);
     impl.writeBack();
-    if (impl.unconstrained.watchesPlanes()) report.warnings = impl.unconstrained.planeWarnings(curPoints());
-    report.invertedCellCount = impl.inverted.count(impl.state.displacement, &report.worstQuality);
+    if (impl.unconstrained.watchesPlanes())
+        for (std::string& warning : impl.unconstrained.planeWarnings(curPoints())) report.warnings.push_back(std::move(warning));
+    report.invertedCellCount = impl.inverted.count(impl.written(), &report.worstQuality);
     report.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     return report;
 }

@@ -15,48 +15,62 @@ namespace {
 
 constexpr int leafSize = 4;
 
-double squaredPointSegment(const Vector3& p, const Vector3& a, const Vector3& b)
+Vector3 closestPointOnSegment(const Vector3& p, const Vector3& a, const Vector3& b)
 {
     const Vector3 ab = b - a;
     const double length2 = normSquared(ab);
     double t = length2 > 0.0 ? dot(p - a, ab) / length2 : 0.0;
     t = std::clamp(t, 0.0, 1.0);
-    return normSquared(p - (a + t * ab));
+    return a + t * ab;
 }
 
-// Closest point on triangle abc to p (Ericson, Real-Time Collision Detection, §5.1.5),
-// returned as the squared distance. Degenerate triangles fall back to their edges.
-double squaredPointTriangle(const Vector3& p, const Vector3& a, const Vector3& b, const Vector3& c)
+double squaredPointSegment(const Vector3& p, const Vector3& a, const Vector3& b)
+{
+    return normSquared(p - closestPointOnSegment(p, a, b));
+}
+
+// Closest point on triangle abc to p (Ericson, Real-Time Collision Detection, §5.1.5).
+// Degenerate triangles fall back to their nearest edge.
+Vector3 closestPointOnTriangle(const Vector3& p, const Vector3& a, const Vector3& b, const Vector3& c)
 {
     const Vector3 ab = b - a;
     const Vector3 ac = c - a;
     if (normSquared(cross(ab, ac)) <= 1e-30 * normSquared(ab) * normSquared(ac) || normSquared(ab) == 0.0 ||
         normSquared(ac) == 0.0) {
-        return std::min({squaredPointSegment(p, a, b), squaredPointSegment(p, b, c), squaredPointSegment(p, c, a)});
+        Vector3 best = closestPointOnSegment(p, a, b);
+        for (const auto& [from, to] : {std::pair{b, c}, std::pair{c, a}}) {
+            const Vector3 candidate = closestPointOnSegment(p, from, to);
+            if (normSquared(p - candidate) < normSquared(p - best)) best = candidate;
+        }
+        return best;
     }
     const Vector3 ap = p - a;
     const double d1 = dot(ab, ap);
     const double d2 = dot(ac, ap);
-    if (d1 <= 0.0 && d2 <= 0.0) return normSquared(ap);
+    if (d1 <= 0.0 && d2 <= 0.0) return a;
     const Vector3 bp = p - b;
     const double d3 = dot(ab, bp);
     const double d4 = dot(ac, bp);
-    if (d3 >= 0.0 && d4 <= d3) return normSquared(bp);
+    if (d3 >= 0.0 && d4 <= d3) return b;
     const double vc = d1 * d4 - d3 * d2;
-    if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return normSquared(p - (a + (d1 / (d1 - d3)) * ab));
+    if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return a + (d1 / (d1 - d3)) * ab;
     const Vector3 cp = p - c;
     const double d5 = dot(ab, cp);
     const double d6 = dot(ac, cp);
-    if (d6 >= 0.0 && d5 <= d6) return normSquared(cp);
+    if (d6 >= 0.0 && d5 <= d6) return c;
     const double vb = d5 * d2 - d1 * d6;
-    if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return normSquared(p - (a + (d2 / (d2 - d6)) * ac));
+    if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return a + (d2 / (d2 - d6)) * ac;
     const double va = d3 * d6 - d5 * d4;
-    if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0)
-        return normSquared(p - (b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b)));
+    if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
     const double denominator = 1.0 / (va + vb + vc);
     const double v = vb * denominator;
     const double w = vc * denominator;
-    return normSquared(p - (a + v * ab + w * ac));
+    return a + v * ab + w * ac;
+}
+
+double squaredPointTriangle(const Vector3& p, const Vector3& a, const Vector3& b, const Vector3& c)
+{
+    return normSquared(p - closestPointOnTriangle(p, a, b, c));
 }
 
 double squaredBoxDistance(const Vector3& p, const Vector3& min, const Vector3& max)
@@ -99,6 +113,15 @@ double NearestSurface::squaredDistance(const Primitive& primitive, const Vector3
 {
     return primitive.segment ? squaredPointSegment(point, primitive.a, primitive.b)
                              : squaredPointTriangle(point, primitive.a, primitive.b, primitive.c);
+}
+
+Vector3 NearestSurface::nearestPoint(const Vector3& point, int& hint) const
+{
+    if (primitives_.empty()) return point;
+    (void)distance(point, hint);
+    const Primitive& nearest = primitives_[static_cast<std::size_t>(hint)];
+    return nearest.segment ? closestPointOnSegment(point, nearest.a, nearest.b)
+                           : closestPointOnTriangle(point, nearest.a, nearest.b, nearest.c);
 }
 
 void NearestSurface::build()

@@ -43,6 +43,9 @@ public:
     // nearest primitive of an earlier query (-1: none), whose distance bounds the search from
     // the start; it receives this query's nearest primitive.
     double distance(const Vector3& point, int& hint) const;
+    // The nearest point of the surface to `point` (`point` itself when there is no primitive);
+    // `hint` as for distance().
+    Vector3 nearestPoint(const Vector3& point, int& hint) const;
 
     // The indices of the primitives whose squared distance from `point` is at most
     // radius², appended to `found` in the hierarchy's order; false (and `found` left
