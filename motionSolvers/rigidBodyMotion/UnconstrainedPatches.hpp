@@ -7,8 +7,9 @@
 //   by default its points slide on the patch's surface: each on the plane through its
 //   reference position normal to the patch's point normal there (OpenFOAM's
 //   PrimitivePatch::pointNormals of the reference mesh). A planar patch stays exactly in its
-//   plane; a curved one is followed to first order (a point that slides a distance s leaves
-//   a surface of radius R by about s²/2R). Where such a point is also on another sliding
+//   plane; on a curved one a point that slides a distance s leaves the surface by about
+//   s²/2R (R its radius), and CurvedPatchProjection puts it back onto the patch's reference
+//   faces after each solve. Where such a point is also on another sliding
 //   patch it slides on their intersection line, on three it stays.
 //
 //   a patch listed in `floatingPatches (names, groups or "regular expressions");` of
