@@ -276,59 +276,9 @@ MoveMeshRun::MoveMeshRun(MoveMeshOptions options, std::ostream& out, std::ostrea
         if (caseName_.empty() || caseName_ == "." || caseName_ == "..") caseName_ = "case";
     }
 
-    control_ = io::readControlDict(caseDirectory_);
-    timePrecision_ = control_.timePrecision;
-    startTime_ = io::resolveStartTime(control_, caseDirectory_);
-    if (control_.endTime < startTime_) {
-        throw InputError(control_.file, 0,
-                         "endTime " + general(control_.endTime) + " is before the start time " + general(startTime_));
-    }
-    // Steps up to endTime within 1e-9 deltaT, or within the rounding of the times themselves
-    // when they are large against deltaT (16 ulps: 1.0000002 − 1 is 1.9999999 steps of 1e-7).
-    const double span = (control_.endTime - startTime_) / control_.deltaT;
-    const double roundingInSteps = 16.0 * std::numeric_limits<double>::epsilon() *
-                                   std::max(std::abs(startTime_), std::abs(control_.endTime)) / control_.deltaT;
-    endTolerance_ = std::max(1e-9, roundingInSteps);
-    stepCount_ = static_cast<int>(std::floor(span + endTolerance_));
-    if (span + endTolerance_ >= static_cast<double>(std::numeric_limits<int>::max())) {
-        throw InputError(control_.file, 0, "(endTime - startTime)/deltaT = " + general(span) + " steps: too many");
-    }
-
-    // The start folder and the folder of the boundary conditions.
-    const std::vector<io::TimeDirectory> times = io::listTimeDirectories(caseDirectory_);
-    const double timeTolerance = 1e-9 * control_.deltaT;
-    startTimeName_ = control_.timeName(startTime_);
-    for (const io::TimeDirectory& time : times) {
-        if (std::abs(time.value - startTime_) <= timeTolerance) startTimeName_ = time.name;
-    }
-    for (const io::TimeDirectory& time : times) {
-        if (time.value > startTime_ + timeTolerance) break;
-        if (io::existsMaybeCompressed(caseDirectory_ / time.name / "pointDisplacement")) {
-            boundaryFieldFile_ = caseDirectory_ / time.name / "pointDisplacement";
-            break;
-        }
-    }
-    if (boundaryFieldFile_.empty()) {
-        throw InputError((caseDirectory_ / startTimeName_ / "pointDisplacement").string(), 0,
-                         "no point displacement field: rbmMoveMesh takes the boundary conditions of the motion "
-                         "from <time>/pointDisplacement of the earliest time folder up to the start time " +
-                             startTimeName_);
-    }
-
-    const fs::path polyMeshFolder = caseDirectory_ / "constant" / "polyMesh";
-    mesh_ = io::readPolyMesh(polyMeshFolder);
-    // OpenFOAM's rules the reader does not check one file at a time: upper-triangular face
-    // order, closed and consistently oriented cells, no point twice in a face. Inverted
-    // cells are not an input error here (the initial mesh's are reported as a warning).
-    TopologyCheckOptions topologyChecks;
-    topologyChecks.checkCellVolumes = false;
-    topologyChecks.maxMessages = 5;
-    MeshTopology topology;   // built by the check, kept for the quality checks and VTK
-    if (const auto problems = checkPolyMeshOrdering(mesh_, topologyChecks, topology); !problems.empty()) {
-        std::string text = "the mesh breaks OpenFOAM's polyMesh rules (files faces, owner, neighbour):";
-        for (const std::string& problem : problems) text += "\n  " + problem;
-        throw InputError(polyMeshFolder.string(), 0, text);
-    }
+    readTimeControls();
+    locateBoundaryField();
+    MeshTopology topology = readCheckedMesh();   // kept for the quality checks and VTK
     dynamicMeshDict_ = io::Dictionary::readFile(caseDirectory_ / "constant" / "dynamicMeshDict");
     const fs::path boundaryFieldPath = io::resolveMaybeCompressed(boundaryFieldFile_);
     boundaryField_ = io::readPointVectorField(boundaryFieldPath, mesh_);
@@ -374,6 +324,72 @@ MoveMeshRun::MoveMeshRun(MoveMeshOptions options, std::ostream& out, std::ostrea
 
     timeNameWidth_ = std::max<int>(8, static_cast<int>(std::max(startTimeName_.size(),
                                                                 control_.timeName(control_.endTime).size())));
+}
+
+void MoveMeshRun::readTimeControls()
+{
+    control_ = io::readControlDict(caseDirectory_);
+    timePrecision_ = control_.timePrecision;
+    startTime_ = io::resolveStartTime(control_, caseDirectory_);
+    if (control_.endTime < startTime_) {
+        throw InputError(control_.file, 0,
+                         "endTime " + general(control_.endTime) + " is before the start time " + general(startTime_));
+    }
+    // Steps up to endTime within 1e-9 deltaT, or within the rounding of the times themselves
+    // when they are large against deltaT (16 ulps: 1.0000002 − 1 is 1.9999999 steps of 1e-7).
+    const double span = (control_.endTime - startTime_) / control_.deltaT;
+    const double roundingInSteps = 16.0 * std::numeric_limits<double>::epsilon() *
+                                   std::max(std::abs(startTime_), std::abs(control_.endTime)) / control_.deltaT;
+    endTolerance_ = std::max(1e-9, roundingInSteps);
+    stepCount_ = static_cast<int>(std::floor(span + endTolerance_));
+    if (span + endTolerance_ >= static_cast<double>(std::numeric_limits<int>::max())) {
+        throw InputError(control_.file, 0, "(endTime - startTime)/deltaT = " + general(span) + " steps: too many");
+    }
+
+}
+
+void MoveMeshRun::locateBoundaryField()
+{
+    // The start folder and the folder of the boundary conditions.
+    const std::vector<io::TimeDirectory> times = io::listTimeDirectories(caseDirectory_);
+    const double timeTolerance = 1e-9 * control_.deltaT;
+    startTimeName_ = control_.timeName(startTime_);
+    for (const io::TimeDirectory& time : times) {
+        if (std::abs(time.value - startTime_) <= timeTolerance) startTimeName_ = time.name;
+    }
+    for (const io::TimeDirectory& time : times) {
+        if (time.value > startTime_ + timeTolerance) break;
+        if (io::existsMaybeCompressed(caseDirectory_ / time.name / "pointDisplacement")) {
+            boundaryFieldFile_ = caseDirectory_ / time.name / "pointDisplacement";
+            break;
+        }
+    }
+    if (boundaryFieldFile_.empty()) {
+        throw InputError((caseDirectory_ / startTimeName_ / "pointDisplacement").string(), 0,
+                         "no point displacement field: rbmMoveMesh takes the boundary conditions of the motion "
+                         "from <time>/pointDisplacement of the earliest time folder up to the start time " +
+                             startTimeName_);
+    }
+
+}
+
+MeshTopology MoveMeshRun::readCheckedMesh()
+{
+    const fs::path polyMeshFolder = caseDirectory_ / "constant" / "polyMesh";
+    mesh_ = io::readPolyMesh(polyMeshFolder);
+    // OpenFOAM's rules the reader does not check one file at a time: upper-triangular face
+    // order, closed and consistently oriented cells, no point twice in a face. Inverted
+    // cells are not an input error here (the initial mesh's are reported as a warning).
+    TopologyCheckOptions topologyChecks;
+    topologyChecks.checkCellVolumes = false;
+    topologyChecks.maxMessages = 5;
+    MeshTopology topology;   // built by the check
+    if (const auto problems = checkPolyMeshOrdering(mesh_, topologyChecks, topology); !problems.empty()) {
+        std::string text = "the mesh breaks OpenFOAM's polyMesh rules (files faces, owner, neighbour):";
+        for (const std::string& problem : problems) text += "\n  " + problem;
+        throw InputError(polyMeshFolder.string(), 0, text);
+    }
+    return topology;
 }
 
 MoveMeshRun::~MoveMeshRun() = default;
@@ -678,136 +694,144 @@ int MoveMeshRun::run()
     cpuStart_ = cpuSeconds();
     clockStart_ = std::chrono::duration<double>(Clock::now().time_since_epoch()).count();
     writeTimeIndex_ = 0;
-
-    for (const std::string& name :
-         options_.writesFiles ? io::removeStaleStagingFolders(caseDirectory_) : std::vector<std::string>{}) {
-        err_ << "rbmMoveMesh: removed " << name << ", the unfinished time folder of an interrupted run\n";
-    }
-    for (const std::string& name : options_.writesFiles ? io::removeStaleTemporaries(caseDirectory_ / "VTK", {".vtu", ".pvd"})
-                                                        : std::vector<std::string>{}) {
-        err_ << "rbmMoveMesh: removed VTK/" << name << ", the unfinished VTK file of an interrupted run\n";
-    }
+    removeInterruptedWrites();
     printHeader();
     io::JsonLinesWriter jsonLog = options_.writesFiles ? io::JsonLinesWriter(jsonLogFile(), true) : io::JsonLinesWriter();
-
-    // The initial mesh: quality, and the first entry of the VTK series.
     std::vector<Vector3> points = solver_->curPoints();
-    {
-        const StepQuality initial = assessor_->evaluateStep(points);
-        out_ << "Initial mesh (time " << startTimeName_ << "): worst quality " << fixed(initial.worstCellQuality, 4)
-             << ", max non-orthogonality " << fixed(initial.maxNonOrthogonality, 2) << ", max skewness "
-             << fixed(initial.maxSkewness, 3) << ", inverted " << initial.invertedCellCount << "\n\n";
-        if (initial.invertedCellCount > 0) {
-            err_ << "rbmMoveMesh: warning: the initial mesh already has " << initial.invertedCellCount
-                 << " inverted cells\n";
-        }
-        if (options_.writeVtk) writeVtk(startTime_, startTimeName_, points);
-        // Not held through the solves (QualityEvaluator::releaseWorkspaces).
-        assessor_->releaseWorkspaces();
-    }
-    out_.flush();
+    reportInitialMesh(points);
 
     int exitStatus = exitSuccess;
     int stepsRun = 0;
-    for (int step = 1; step <= stepCount_; ++step) {
-        threads_.update();   // the cores others left during the last step (or the set-up)
-        const Clock::time_point stepStart = Clock::now();
-        const double time = stepTime(step);
-        std::string name;
-        int writtenParts = 0;   // for an error's message (writtenByStep)
-        try {
-            name = timeNameOf(time);
-            solver_->updateBoundaryConditions(time);
-            checkBoundaryDisplacementIsFinite(time);
-            const motion::MotionSolveReport solve = solver_->solve();
-            points = solver_->curPoints();
-            for (const std::string& warning : solve.warnings)
-                err_ << "rbmMoveMesh: warning: time " << name << ": " << warning << '\n';
-
-            // A solve that produced NaN or infinite values failed whatever it reports; such a
-            // mesh is never written (not even with -writeInvalid) and stops the run.
-            io::StepLogRecord record;
-            record.step = step;
-            record.time = time;
-            record.timeName = name;
-            const motion::StepVerdict verdict = assessor_->assess(solve, solver_->pointDisplacement(), points, record);
-            const bool finite = verdict.finite;
-            const bool valid = verdict.valid;
-
-            const bool scheduled = isWriteTime(step, time);   // called every step: it keeps state
-            if (valid ? scheduled : options_.writeInvalid && finite) {
-                if (!valid) {
-                    err_ << "\n*** WARNING (-writeInvalid): writing time " << name << " although "
-                         << (record.invertedCells > 0 ? std::to_string(record.invertedCells) + " cells are inverted"
-                                                      : std::string("the solve did not converge (") + record.reason + ")")
-                         << ": this mesh is NOT valid for a flow solver ***\n\n";
-                }
-                writeTime(name, points);
-                writtenParts = 1;
-                if (options_.writeVtk) writeVtk(time, name, points);
-                writtenParts = 2;
-                record.written = true;
-            }
-            record.wallSeconds = secondsSince(stepStart);
-
-            out_ << io::formatStepLogLine(record, timeNameWidth_) << '\n';
-            out_.flush();
-            if (jsonLog.isOpen()) jsonLog.append(io::stepLogJson(record));
-            ++stepsRun;
-
-            Extremes& e = extremes_;
-            if (std::isfinite(record.worstQuality) && (!e.haveQuality || record.worstQuality < e.worstQuality)) {
-                e.worstQuality = record.worstQuality;
-                e.worstQualityTime = time;
-                e.haveQuality = true;
-            }
-            if (finite && (step == 1 || record.maxNonOrthogonality > e.maxNonOrthogonality)) {
-                e.maxNonOrthogonality = record.maxNonOrthogonality;
-                e.maxNonOrthogonalityTime = time;
-            }
-            if (finite && (step == 1 || record.maxSkewness > e.maxSkewness)) {
-                e.maxSkewness = record.maxSkewness;
-                e.maxSkewnessTime = time;
-            }
-            e.maxInvertedCells = std::max(e.maxInvertedCells, record.invertedCells);
-            e.maxIterations = std::max(e.maxIterations, record.iterations);
-            e.totalIterations += record.iterations;
-            if (std::isfinite(record.residual)) e.maxResidual = std::max(e.maxResidual, record.residual);
-            if (record.written) {
-                ++e.writtenTimes;
-                e.lastWritten = name;
-            }
-
-            if (observer_) observer_(StepObservation{record, *solver_, points, valid});
-            assessor_->releaseWorkspaces();
-
-            if (!valid) {
-                ++e.invalidSteps;
-                exitStatus = exitRunFailed;
-                if (!options_.writeInvalid || !finite) {
-                    err_ << "rbmMoveMesh: time " << name << ": " << motion::invalidStepCause(verdict, record)
-                         << ".\nNothing was written for time " << name << (finite ? "" : " (not even with -writeInvalid)")
-                         << "; earlier times stay as written. "
-                         << motion::invalidStepAdvice(verdict, record, "-writeInvalid writes the step anyway to look at it",
-                                                   solver_->invertedStepAdvice())
-                         << "\n";
-                    break;
-                }
-            }
-        } catch (const InputError& error) {
-            err_ << "rbmMoveMesh: time " << (name.empty() ? general(time) : name) << ": " << error.what() << '\n'
-                 << writtenByStep(name, writtenParts, options_.writeVtk) << '\n';
-            exitStatus = exitBadInput;
-            break;
-        } catch (const std::exception& error) {
-            err_ << "rbmMoveMesh: time " << (name.empty() ? general(time) : name) << ": " << error.what() << '\n'
-                 << writtenByStep(name, writtenParts, options_.writeVtk) << '\n';
-            exitStatus = exitRunFailed;
-            break;
-        }
-    }
+    for (int step = 1; step <= stepCount_; ++step)
+        if (!runStep(step, points, jsonLog, exitStatus, stepsRun)) break;
     printSummary(stepsRun, secondsSince(runStart));
     return exitStatus;
+}
+
+void MoveMeshRun::removeInterruptedWrites()
+{
+    if (!options_.writesFiles) return;
+    for (const std::string& name : io::removeStaleStagingFolders(caseDirectory_))
+        err_ << "rbmMoveMesh: removed " << name << ", the unfinished time folder of an interrupted run\n";
+    for (const std::string& name : io::removeStaleTemporaries(caseDirectory_ / "VTK", {".vtu", ".pvd"}))
+        err_ << "rbmMoveMesh: removed VTK/" << name << ", the unfinished VTK file of an interrupted run\n";
+}
+
+void MoveMeshRun::reportInitialMesh(const std::vector<Vector3>& points)
+{
+    // The initial mesh: quality, and the first entry of the VTK series.
+    const StepQuality initial = assessor_->evaluateStep(points);
+    out_ << "Initial mesh (time " << startTimeName_ << "): worst quality " << fixed(initial.worstCellQuality, 4)
+         << ", max non-orthogonality " << fixed(initial.maxNonOrthogonality, 2) << ", max skewness "
+         << fixed(initial.maxSkewness, 3) << ", inverted " << initial.invertedCellCount << "\n\n";
+    if (initial.invertedCellCount > 0) {
+        err_ << "rbmMoveMesh: warning: the initial mesh already has " << initial.invertedCellCount
+             << " inverted cells\n";
+    }
+    if (options_.writeVtk) writeVtk(startTime_, startTimeName_, points);
+    // Not held through the solves (QualityEvaluator::releaseWorkspaces).
+    assessor_->releaseWorkspaces();
+    out_.flush();
+}
+
+bool MoveMeshRun::runStep(int step, std::vector<Vector3>& points, io::JsonLinesWriter& jsonLog, int& exitStatus,
+                          int& stepsRun)
+{
+    threads_.update();   // the cores others left during the last step (or the set-up)
+    const Clock::time_point stepStart = Clock::now();
+    const double time = stepTime(step);
+    std::string name;
+    int writtenParts = 0;   // for an error's message (writtenByStep)
+    try {
+        name = timeNameOf(time);
+        solver_->updateBoundaryConditions(time);
+        checkBoundaryDisplacementIsFinite(time);
+        const motion::MotionSolveReport solve = solver_->solve();
+        points = solver_->curPoints();
+        for (const std::string& warning : solve.warnings)
+            err_ << "rbmMoveMesh: warning: time " << name << ": " << warning << '\n';
+
+        // A solve that produced NaN or infinite values failed whatever it reports; such a
+        // mesh is never written (not even with -writeInvalid) and stops the run.
+        io::StepLogRecord record;
+        record.step = step;
+        record.time = time;
+        record.timeName = name;
+        const motion::StepVerdict verdict = assessor_->assess(solve, solver_->pointDisplacement(), points, record);
+        const bool scheduled = isWriteTime(step, time);   // called every step: it keeps state
+        if (verdict.valid ? scheduled : options_.writeInvalid && verdict.finite) {
+            if (!verdict.valid) warnWritingInvalid(record);
+            writeTime(name, points);
+            writtenParts = 1;
+            if (options_.writeVtk) writeVtk(time, name, points);
+            writtenParts = 2;
+            record.written = true;
+        }
+        record.wallSeconds = secondsSince(stepStart);
+
+        out_ << io::formatStepLogLine(record, timeNameWidth_) << '\n';
+        out_.flush();
+        if (jsonLog.isOpen()) jsonLog.append(io::stepLogJson(record));
+        ++stepsRun;
+        extremes_.add(record, step, verdict.finite);
+        if (observer_) observer_(StepObservation{record, *solver_, points, verdict.valid});
+        assessor_->releaseWorkspaces();
+
+        if (verdict.valid) return true;
+        ++extremes_.invalidSteps;
+        exitStatus = exitRunFailed;
+        if (options_.writeInvalid && verdict.finite) return true;
+        err_ << "rbmMoveMesh: time " << name << ": " << motion::invalidStepCause(verdict, record)
+             << ".\nNothing was written for time " << name << (verdict.finite ? "" : " (not even with -writeInvalid)")
+             << "; earlier times stay as written. "
+             << motion::invalidStepAdvice(verdict, record, "-writeInvalid writes the step anyway to look at it",
+                                          solver_->invertedStepAdvice())
+             << "\n";
+        return false;
+    } catch (const InputError& error) {
+        err_ << "rbmMoveMesh: time " << (name.empty() ? general(time) : name) << ": " << error.what() << '\n'
+             << writtenByStep(name, writtenParts, options_.writeVtk) << '\n';
+        exitStatus = exitBadInput;
+        return false;
+    } catch (const std::exception& error) {
+        err_ << "rbmMoveMesh: time " << (name.empty() ? general(time) : name) << ": " << error.what() << '\n'
+             << writtenByStep(name, writtenParts, options_.writeVtk) << '\n';
+        exitStatus = exitRunFailed;
+        return false;
+    }
+}
+
+void MoveMeshRun::warnWritingInvalid(const io::StepLogRecord& record)
+{
+    err_ << "\n*** WARNING (-writeInvalid): writing time " << record.timeName << " although "
+         << (record.invertedCells > 0 ? std::to_string(record.invertedCells) + " cells are inverted"
+                                      : std::string("the solve did not converge (") + record.reason + ")")
+         << ": this mesh is NOT valid for a flow solver ***\n\n";
+}
+
+void MoveMeshRun::Extremes::add(const io::StepLogRecord& record, int step, bool finite)
+{
+    if (std::isfinite(record.worstQuality) && (!haveQuality || record.worstQuality < worstQuality)) {
+        worstQuality = record.worstQuality;
+        worstQualityTime = record.time;
+        haveQuality = true;
+    }
+    if (finite && (step == 1 || record.maxNonOrthogonality > maxNonOrthogonality)) {
+        maxNonOrthogonality = record.maxNonOrthogonality;
+        maxNonOrthogonalityTime = record.time;
+    }
+    if (finite && (step == 1 || record.maxSkewness > maxSkewness)) {
+        maxSkewness = record.maxSkewness;
+        maxSkewnessTime = record.time;
+    }
+    maxInvertedCells = std::max(maxInvertedCells, record.invertedCells);
+    maxIterations = std::max(maxIterations, record.iterations);
+    totalIterations += record.iterations;
+    if (std::isfinite(record.residual)) maxResidual = std::max(maxResidual, record.residual);
+    if (record.written) {
+        ++writtenTimes;
+        lastWritten = record.timeName;
+    }
 }
 
 void MoveMeshRun::printSummary(int stepsRun, double wallSeconds) const

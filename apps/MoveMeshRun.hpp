@@ -151,6 +151,12 @@ private:
     std::string timeNameOf(double time);
     void writeTime(const std::string& timeName, const std::vector<Vector3>& points);
     void writeVtk(double time, const std::string& timeName, const std::vector<Vector3>& points);
+    // The constructor's parts: controlDict's times (start, step count); the start folder and
+    // the pointDisplacement file of the boundary conditions; the mesh, checked against
+    // OpenFOAM's polyMesh rules (its topology, built by the check, returned).
+    void readTimeControls();
+    void locateBoundaryField();
+    MeshTopology readCheckedMesh();
     // nodeClasses_ and prescribedPatches_ from the solver's boundary description.
     void computeNodeClasses();
     // The memory the solve may use: RBM_AVAILABLE_MEMORY_MB (MiB) when set, else what the
@@ -161,6 +167,13 @@ private:
     // displacement at `time` (called after updateBoundaryConditions).
     void checkBoundaryDisplacementIsFinite(double time) const;
     void printSummary(int stepsRun, double wallSeconds) const;
+    // run()'s parts: the leftovers of an interrupted run's writes removed (and said); the
+    // initial mesh's quality line (and VTK); one time step, false when the run stops there
+    // (exitStatus then says why).
+    void removeInterruptedWrites();
+    void reportInitialMesh(const std::vector<Vector3>& points);
+    bool runStep(int step, std::vector<Vector3>& points, io::JsonLinesWriter& jsonLog, int& exitStatus, int& stepsRun);
+    void warnWritingInvalid(const io::StepLogRecord& record);
 
     MoveMeshOptions options_;
     std::ostream& out_;
@@ -212,6 +225,8 @@ private:
         double maxResidual = 0.0;
         int writtenTimes = 0;
         std::string lastWritten;
+        // A logged step's figures into the extremes (`finite`: its mesh has no NaN).
+        void add(const io::StepLogRecord& record, int step, bool finite);
     } extremes_;
 };
 
