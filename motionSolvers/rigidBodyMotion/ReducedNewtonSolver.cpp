@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <cstdio>
 #include <sstream>
 #include <utility>
@@ -75,40 +76,26 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
     const WarmStart::Start start = warmStart_.start(prescribedDisplacement, initialGuess, unknowns);
     ReducedIterate point = start.point;
     const double tolerance = std::max(absoluteTolerance_, options_.relativeTolerance * point.gradientNorm);
-    constexpr double roundoffFactor = 10.0;  // as CoupledNewtonSolver's convergence test
     newtonCg_.startSolve(point.gradientNorm);
     RbmResult result;
     result.converged = false;
     std::string reason = start.failure;
     bool subspaceStepDue = start.subspaceStepDue;
-    auto finite = [&] { return std::isfinite(point.energy) && std::isfinite(point.gradientNorm); };
+    const bool finite = std::isfinite(point.energy) && std::isfinite(point.gradientNorm);
     bool laplacianFailed = false;
     // Where the boundary is reproduced, the displacement test first: the subspace step's
     // products (the Hessian's data, S products, a fit and a gradient) would end "not taken"
     // there. Where the test fails, its K⁻¹ is one back-substitution (or cycle) more.
-    if (start.boundaryReproduced && subspaceStepDue && displacementTest && reason.empty() && finite() &&
+    if (start.boundaryReproduced && subspaceStepDue && displacementTest && reason.empty() && finite &&
         point.gradientNorm > tolerance && displacementTestPasses(point.gradient, " at the reproduced boundary", laplacianFailed)) {
         result.converged = true;
         reason = "CONVERGED_DISPLACEMENT";
     }
     for (int iteration = 0; start.failure.empty() && !result.converged; ++iteration) {
-        if (!finite()) {
-            reason = "DIVERGED_FNORM_NAN";
-            break;
-        }
-        if (point.gradientNorm <= tolerance) {
-            result.converged = true;
-            reason = point.gradientNorm <= absoluteTolerance_ ? "CONVERGED_FNORM_ABS" : "CONVERGED_FNORM_RELATIVE";
-            break;
-        }
-        const double roundingLevel = roundoffFactor * reducedEnergy_.gradientRoundoffNorm(point.displacement);
-        if (point.gradientNorm <= roundingLevel) {
-            result.converged = true;
-            reason = "CONVERGED_FNORM_ABS (rounding level)";
-            break;
-        }
-        if (iteration >= options_.maximumIterations) {
-            reason = "DIVERGED_MAX_IT";
+        double roundingLevel = 0.0;
+        if (const std::optional<Stop> stop = stopBefore(point, tolerance, iteration, roundingLevel)) {
+            result.converged = stop->converged;
+            reason = stop->reason;
             break;
         }
         const double finalTolerance = std::max(tolerance, roundingLevel);
@@ -121,29 +108,14 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
             newtonCg_.restartAfter(iteration, point.gradientNorm);
             continue;
         }
-        // The displacement test: K⁻¹(−∇Ẽ), the local/global estimate of the remaining
-        // displacement (S ≤ K: it underestimates the Newton step), small against every node's
-        // shortest edge. It is CG's first preconditioned residual too, so the test costs
-        // nothing when it fails.
         const std::vector<double>* firstPreconditioned = nullptr;
         if (displacementTest) {
-            if (displacementTestPasses(point.gradient, "", laplacianFailed)) {
-                result.converged = true;
-                reason = "CONVERGED_DISPLACEMENT";
-                break;
-            }
-            if (laplacianFailed) {
-                reason = "DIVERGED_LINEAR_SOLVE (Laplacian)";
+            if (const std::optional<Stop> stop = displacementTestBeforeStep(point, finalTolerance)) {
+                result.converged = stop->converged;
+                reason = stop->reason;
                 break;
             }
             firstPreconditioned = &estimatedCorrection_;
-            // Close to the minimum the step's own nonlinearity is of the order of the squared
-            // displacement (relative to the edges): with D² ≤ 10 ε it is a fraction of ε, and the
-            // gradient after the step is CG's residual. So CG goes on to the displacement target
-            // that makes the next test pass instead of stopping at the forcing and leaving a
-            // Newton step more (CloseToTheMinimumOneNewtonStepPassesTheDisplacementTest).
-            if (estimatedDisplacement_ * estimatedDisplacement_ <= 10.0 * options_.displacementTolerance)
-                newtonCg_.forceToFinalTolerance(point.gradientNorm, finalTolerance);
         }
         const NewtonCg::Outcome outcome =
             newtonCg_.step(point, unknowns, firstPreconditioned, iteration, result.linearIterations, monitor_);
@@ -156,6 +128,39 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
     }
     warmStart_.record(start, point.displacement, result.converged, initialGuess != nullptr, unknowns);
     return finishedResult(std::move(point), std::move(result), reason);
+}
+
+std::optional<ReducedNewtonSolver::Stop> ReducedNewtonSolver::stopBefore(const ReducedIterate& point, double tolerance,
+                                                                         int iteration, double& roundingLevel)
+{
+    constexpr double roundoffFactor = 10.0;  // as CoupledNewtonSolver's convergence test
+    if (!(std::isfinite(point.energy) && std::isfinite(point.gradientNorm))) return Stop{false, "DIVERGED_FNORM_NAN"};
+    if (point.gradientNorm <= tolerance)
+        return Stop{true, point.gradientNorm <= absoluteTolerance_ ? "CONVERGED_FNORM_ABS" : "CONVERGED_FNORM_RELATIVE"};
+    roundingLevel = roundoffFactor * reducedEnergy_.gradientRoundoffNorm(point.displacement);
+    if (point.gradientNorm <= roundingLevel) return Stop{true, "CONVERGED_FNORM_ABS (rounding level)"};
+    if (iteration >= options_.maximumIterations) return Stop{false, "DIVERGED_MAX_IT"};
+    return std::nullopt;
+}
+
+std::optional<ReducedNewtonSolver::Stop> ReducedNewtonSolver::displacementTestBeforeStep(const ReducedIterate& point,
+                                                                                       double finalTolerance)
+{
+    // The displacement test: K⁻¹(−∇Ẽ), the local/global estimate of the remaining
+    // displacement (S ≤ K: it underestimates the Newton step), small against every node's
+    // shortest edge. It is CG's first preconditioned residual too, so the test costs
+    // nothing when it fails.
+    bool laplacianFailed = false;
+    if (displacementTestPasses(point.gradient, "", laplacianFailed)) return Stop{true, "CONVERGED_DISPLACEMENT"};
+    if (laplacianFailed) return Stop{false, "DIVERGED_LINEAR_SOLVE (Laplacian)"};
+    // Close to the minimum the step's own nonlinearity is of the order of the squared
+    // displacement (relative to the edges): with D² ≤ 10 ε it is a fraction of ε, and the
+    // gradient after the step is CG's residual. So CG goes on to the displacement target
+    // that makes the next test pass instead of stopping at the forcing and leaving a
+    // Newton step more (CloseToTheMinimumOneNewtonStepPassesTheDisplacementTest).
+    if (estimatedDisplacement_ * estimatedDisplacement_ <= 10.0 * options_.displacementTolerance)
+        newtonCg_.forceToFinalTolerance(point.gradientNorm, finalTolerance);
+    return std::nullopt;
 }
 
 RbmResult ReducedNewtonSolver::finishedResult(ReducedIterate point, RbmResult result, const std::string& reason) const

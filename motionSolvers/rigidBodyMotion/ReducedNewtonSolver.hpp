@@ -35,6 +35,7 @@
 #include "RelativeDisplacement.hpp"
 #include "WarmStart.hpp"
 
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -90,6 +91,18 @@ private:
     // largest relative displacement into estimatedDisplacement_, true when that is within the
     // tolerance; laplacianFailed when K⁻¹ failed. where: the monitor line's context.
     bool displacementTestPasses(const std::vector<double>& gradient, const char* where, bool& laplacianFailed);
+    // Why a solve stops (converged or not).
+    struct Stop {
+        bool converged = false;
+        std::string reason;
+    };
+    // The tests before an iteration, in order: a non-finite point, the gradient's tolerance,
+    // its rounding level (returned in roundingLevel once computed), the iteration limit.
+    std::optional<Stop> stopBefore(const ReducedIterate& point, double tolerance, int iteration,
+                                   double& roundingLevel);
+    // The displacement test before a Newton step; where it fails but the point is close to the
+    // minimum, CG is told to go on to the final tolerance.
+    std::optional<Stop> displacementTestBeforeStep(const ReducedIterate& point, double finalTolerance);
     // The result of a solve ending at point, with the reason and the count of local/global steps.
     RbmResult finishedResult(ReducedIterate point, RbmResult result, const std::string& reason) const;
 
