@@ -14,7 +14,7 @@
 # time equal the initial points (constant/polyMesh/points) within 1e-9 per component, and so
 # does the written total displacement.
 cmake_minimum_required(VERSION 3.20)
-include(${CMAKE_CURRENT_LIST_DIR}/CopyCaseInputs.cmake)
+include(${CMAKE_CURRENT_LIST_DIR}/../CopyCaseInputs.cmake)
 
 function(fail message)
   message(SEND_ERROR "${message}")

@@ -31,7 +31,7 @@
 #                   serial rbmMoveMesh's to 1e-8 (MPIEXEC: the mpiexec to use).
 # Without the plugin the test prints "skipped: OpenFOAM not installed" (CTest: skipped).
 cmake_minimum_required(VERSION 3.20)
-include(${CMAKE_CURRENT_LIST_DIR}/CopyCaseInputs.cmake)
+include(${CMAKE_CURRENT_LIST_DIR}/../CopyCaseInputs.cmake)
 
 if(NOT RBM_PLUGIN)
   message("skipped: OpenFOAM not installed (the plugin librbmMotionSolver.so was not built; "

@@ -12,7 +12,7 @@
 # step; OpenFOAM's checkMesh of every time written says "Mesh OK", no negative-volume cell, max
 # non-orthogonality at most MAX_NON_ORTHOGONALITY (the initial mesh: 27.09 degrees).
 cmake_minimum_required(VERSION 3.20)
-include(${CMAKE_CURRENT_LIST_DIR}/CopyCaseInputs.cmake)
+include(${CMAKE_CURRENT_LIST_DIR}/../CopyCaseInputs.cmake)
 
 foreach(required RBM_SOURCE_DIR RBM_BUILD_DIR RBM_WORK_DIR MAX_NON_ORTHOGONALITY)
   if(NOT DEFINED ${required})
