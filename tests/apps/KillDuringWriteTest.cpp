@@ -14,7 +14,7 @@
 //  - while the folders of an earlier run are being replaced: each must then be the old one
 //    or the new one, whole, with the flow solver's file kept.
 
-#include "CompressionCase.hpp"
+#include "TestCases.hpp"
 #include "MoveMeshProcess.hpp"
 #include "ScratchFiles.hpp"
 #include "PolyMeshReader.hpp"

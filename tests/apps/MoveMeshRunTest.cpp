@@ -6,7 +6,6 @@
 // the initial mesh; a rigid translation keeps every cell a perfect cube; a boundary that
 // turns inside out forces an inverted cell).
 
-#include "ScratchFiles.hpp"
 #include "FoamDictionaryWriter.hpp"
 #include "MeshGenerators.hpp"
 #include "MoveMeshRun.hpp"
@@ -16,10 +15,13 @@
 #include "PolyMeshWriter.hpp"
 #include "RigidBodyMotionSolver.hpp"
 #include "RunLog.hpp"
+#include "ScratchFiles.hpp"
+#include "TestCases.hpp"
 #include "TimeFolderWriter.hpp"
 #include "TimeName.hpp"
 
 #include <gtest/gtest.h>
+
 #include <sys/stat.h>
 #include <unistd.h>
 #include <vtkCellData.h>
@@ -28,7 +30,6 @@
 #include <vtkPointData.h>
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLUnstructuredGridReader.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -43,21 +44,13 @@
 #include <string>
 #include <vector>
 
+using namespace rbm::test::moveMeshCases;
+
 static auto* const petscEnvironment = ::testing::AddGlobalTestEnvironment(new rbm::test::PetscTestEnvironment);
 
 namespace {
 
-using rbm::test::TempDir;
-using rbm::test::readText;
-using rbm::test::writeText;
-
-namespace fs = std::filesystem;
 using namespace rbm;
-
-// ---- helpers ------------------------------------------------------------------------------------
-
-
-
 
 std::string header(const std::string& className, const std::string& location, const std::string& object)
 {
@@ -175,14 +168,6 @@ RunResult runCase(const fs::path& caseDir, bool writeVtk = true, bool writeInval
     return result;
 }
 
-// Names of the time folders of a case.
-std::set<std::string> timeFolders(const fs::path& caseDir)
-{
-    std::set<std::string> names;
-    for (const auto& time : io::listTimeDirectories(caseDir)) names.insert(time.name);
-    return names;
-}
-
 // Every file and folder under `root` with its size and modification time.
 std::map<std::string, std::string> listing(const fs::path& root)
 {
@@ -199,96 +184,12 @@ std::map<std::string, std::string> listing(const fs::path& root)
     return entries;
 }
 
-void expectNoTemporaryFiles(const fs::path& caseDir)
-{
-    for (const auto& entry : fs::recursive_directory_iterator(caseDir)) {
-        EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos)
-            << "left behind: " << entry.path();
-    }
-}
-
 double largestDistance(const std::vector<Vector3>& a, const std::vector<Vector3>& b)
 {
     EXPECT_EQ(a.size(), b.size());
     double largest = 0.0;
     for (std::size_t i = 0; i < std::min(a.size(), b.size()); ++i) largest = std::max(largest, norm(a[i] - b[i]));
     return largest;
-}
-
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
-
-// A minimal JSON reader for the flat objects of log.jsonl: string, number, true, false,
-// null values. Returns false for anything that is not such an object.
-struct JsonValue {
-    enum class Kind { String, Number, Bool, Null } kind = Kind::Null;
-    std::string text;
-    double number = 0.0;
-    bool boolean = false;
-};
-
-bool parseFlatJsonObject(const std::string& line, std::map<std::string, JsonValue>& object)
-{
-    std::size_t i = 0;
-    auto skip = [&] {
-        while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
-    };
-    auto parseString = [&](std::string& out) {
-        if (i >= line.size() || line[i] != '"') return false;
-        for (++i; i < line.size() && line[i] != '"'; ++i) {
-            if (line[i] == '\\') {
-                if (++i >= line.size()) return false;
-                const char c = line[i];
-                out += c == 'n' ? '\n' : c == 't' ? '\t' : c;
-            } else {
-                out += line[i];
-            }
-        }
-        if (i >= line.size()) return false;
-        ++i;
-        return true;
-    };
-    skip();
-    if (i >= line.size() || line[i++] != '{') return false;
-    while (true) {
-        skip();
-        std::string key;
-        if (!parseString(key)) return false;
-        skip();
-        if (i >= line.size() || line[i++] != ':') return false;
-        skip();
-        JsonValue value;
-        if (i < line.size() && line[i] == '"') {
-            value.kind = JsonValue::Kind::String;
-            if (!parseString(value.text)) return false;
-        } else if (line.compare(i, 4, "true") == 0 || line.compare(i, 5, "false") == 0) {
-            value.kind = JsonValue::Kind::Bool;
-            value.boolean = line[i] == 't';
-            i += value.boolean ? 4 : 5;
-        } else if (line.compare(i, 4, "null") == 0) {
-            value.kind = JsonValue::Kind::Null;
-            i += 4;
-        } else {
-            const char* begin = line.c_str() + i;
-            char* end = nullptr;
-            value.kind = JsonValue::Kind::Number;
-            value.number = std::strtod(begin, &end);
-            if (end == begin) return false;
-            i += static_cast<std::size_t>(end - begin);
-        }
-        if (object.count(key)) return false;   // duplicate key
-        object[key] = value;
-        skip();
-        if (i < line.size() && line[i] == ',') {
-            ++i;
-            continue;
-        }
-        if (i < line.size() && line[i] == '}') {
-            ++i;
-            skip();
-            return i == line.size();
-        }
-        return false;
-    }
 }
 
 std::vector<std::map<std::string, JsonValue>> readJsonLines(const fs::path& file)
@@ -303,8 +204,6 @@ std::vector<std::map<std::string, JsonValue>> readJsonLines(const fs::path& file
     }
     return lines;
 }
-
-// ---- command line ----------------------------------------------------------------------------
 
 TEST(MoveMeshCommandLine, SeparatesItsOwnOptionsFromPetscOptions)
 {
@@ -378,215 +277,6 @@ TEST(MoveMeshCommandLine, AnUnknownOptionExitsWithTwoAndPrintsTheUsage)
     EXPECT_TRUE(contains(err.str(), "unknown option '-latestTime'")) << err.str();
     EXPECT_TRUE(contains(err.str(), "Usage: rbmMoveMesh")) << err.str();
 }
-
-// ---- log --------------------------------------------------------------------------------------
-
-io::StepLogRecord sampleRecord()
-{
-    io::StepLogRecord record;
-    record.step = 1;
-    record.time = 0.025;
-    record.timeName = "0.025";
-    record.subSteps = 1;
-    record.iterations = 3;
-    record.residual = 2.1e-10;
-    record.energy = 0.5;
-    record.converged = true;
-    record.reason = "CONVERGED_RTOL";
-    record.worstQuality = 0.31;
-    record.maxNonOrthogonality = 28.4;
-    record.maxSkewness = 0.8;
-    record.invertedCells = 0;
-    record.wallSeconds = 0.12;
-    return record;
-}
-
-TEST(RunLog, FormatsTheStepLineInFixedColumns)
-{
-    io::StepLogRecord record = sampleRecord();
-    EXPECT_EQ(io::formatStepLogLine(record),
-              "Time = 0.025     sub-steps  1  iterations    3  residual 2.10e-10  worst quality  0.3100"
-              "  max non-orthogonality  28.40  inverted 0  wall   0.120 s");
-    // Another time name and other figures of the usual widths: the same columns.
-    io::StepLogRecord other = record;
-    other.timeName = "1";
-    other.subSteps = 12;
-    other.iterations = 250;
-    other.worstQuality = -0.5;
-    other.maxNonOrthogonality = 5.0;
-    const std::string first = io::formatStepLogLine(record);
-    const std::string second = io::formatStepLogLine(other);
-    for (const char* column : {"sub-steps", "iterations", "residual", "worst quality", "max non-orthogonality",
-                               "inverted", "wall"}) {
-        EXPECT_EQ(first.find(column), second.find(column)) << column << "\n" << first << "\n" << second;
-    }
-}
-
-TEST(RunLog, MarksFailedAndWrittenSteps)
-{
-    io::StepLogRecord record = sampleRecord();
-    record.written = true;
-    EXPECT_TRUE(contains(io::formatStepLogLine(record), "wall   0.120 s  written"));
-    record.converged = false;
-    record.reason = "DIVERGED_ITS";
-    record.invertedCells = 4;
-    record.written = false;
-    const std::string line = io::formatStepLogLine(record);
-    EXPECT_TRUE(contains(line, "inverted 4")) << line;
-    EXPECT_TRUE(contains(line, "NOT CONVERGED (DIVERGED_ITS)  INVALID")) << line;
-    EXPECT_FALSE(contains(line, "written")) << line;
-}
-
-TEST(RunLog, JsonLineHoldsEveryFieldWithNullForNonFiniteNumbers)
-{
-    io::StepLogRecord record = sampleRecord();
-    record.worstQuality = std::nan("");
-    record.reason = "say \"why\"\n";
-    record.written = true;
-    const std::string line = io::stepLogJson(record);
-    EXPECT_EQ(line.find('\n'), std::string::npos);
-    std::map<std::string, JsonValue> object;
-    ASSERT_TRUE(parseFlatJsonObject(line, object)) << line;
-    const std::vector<std::string> keys = {"step",     "time",        "timeName",     "subSteps",
-                                           "iterations", "residual",  "energy",       "converged",
-                                           "reason",   "worstQuality", "maxNonOrthogonality", "maxSkewness",
-                                           "invertedCells", "wallSeconds", "written"};
-    EXPECT_EQ(object.size(), keys.size());
-    for (const std::string& key : keys) EXPECT_EQ(object.count(key), 1u) << key;
-    EXPECT_EQ(object["time"].number, 0.025);
-    EXPECT_EQ(object["timeName"].text, "0.025");
-    EXPECT_EQ(object["iterations"].number, 3);
-    EXPECT_EQ(object["residual"].number, 2.1e-10);
-    EXPECT_TRUE(object["converged"].boolean);
-    EXPECT_EQ(object["reason"].text, "say \"why\"\n");
-    EXPECT_EQ(object["worstQuality"].kind, JsonValue::Kind::Null);
-    EXPECT_EQ(object["maxNonOrthogonality"].number, 28.4);
-    EXPECT_TRUE(object["written"].boolean);
-}
-
-TEST(RunLog, JsonNumbersReadBackToTheSameDouble)
-{
-    for (const double value : {0.1 + 0.2, 1.0 / 3.0, 6.02214076e23, -4.9e-324, 0.0}) {
-        EXPECT_EQ(std::strtod(io::jsonNumber(value).c_str(), nullptr), value) << io::jsonNumber(value);
-    }
-    EXPECT_EQ(io::jsonNumber(INFINITY), "null");
-}
-
-// ---- time folders ------------------------------------------------------------------------------
-
-TEST(TimeFolderWriter, CommitTurnsTheStagingFolderIntoTheTimeFolder)
-{
-    TempDir dir("commitNew");
-    fs::path staging;
-    {
-        io::TimeFolderWriter folder(dir.path(), "0.5");
-        staging = folder.staging();
-        EXPECT_EQ(staging.parent_path(), dir.path());
-        EXPECT_EQ(staging.filename().string().rfind("0.5.tmp-", 0), 0u) << staging;
-        writeText(folder.staging() / "polyMesh" / "points", "points");
-        writeText(folder.staging() / "pointDisplacement", "displacement");
-        // Not visible as a time before commit.
-        EXPECT_TRUE(timeFolders(dir.path()).empty());
-        EXPECT_FALSE(fs::exists(dir.path() / "0.5"));
-        EXPECT_EQ(folder.commit(), dir.path() / "0.5");
-    }
-    EXPECT_FALSE(fs::exists(staging));
-    EXPECT_EQ(readText(dir.path() / "0.5" / "polyMesh" / "points"), "points");
-    EXPECT_EQ(readText(dir.path() / "0.5" / "pointDisplacement"), "displacement");
-    EXPECT_EQ(timeFolders(dir.path()), std::set<std::string>{"0.5"});
-}
-
-TEST(TimeFolderWriter, CommitIntoAnExistingTimeKeepsOtherFilesAndRemovesCompressionTwins)
-{
-    TempDir dir("commitExisting");
-    writeText(dir.path() / "0.5" / "U", "velocity of a flow solver");
-    writeText(dir.path() / "0.5" / "polyMesh" / "points", "old points");
-    writeText(dir.path() / "0.5" / "pointDisplacement.gz", "old compressed displacement");
-    {
-        io::TimeFolderWriter folder(dir.path(), "0.5");
-        writeText(folder.staging() / "polyMesh" / "points.gz", "new points");
-        writeText(folder.staging() / "pointDisplacement", "new displacement");
-        folder.commit();
-    }
-    EXPECT_EQ(readText(dir.path() / "0.5" / "U"), "velocity of a flow solver");
-    EXPECT_EQ(readText(dir.path() / "0.5" / "polyMesh" / "points.gz"), "new points");
-    EXPECT_FALSE(fs::exists(dir.path() / "0.5" / "polyMesh" / "points"));
-    EXPECT_EQ(readText(dir.path() / "0.5" / "pointDisplacement"), "new displacement");
-    EXPECT_FALSE(fs::exists(dir.path() / "0.5" / "pointDisplacement.gz"));
-    expectNoTemporaryFiles(dir.path());
-}
-
-// The identity of a file or folder (device, inode): unchanged by renames, new for a new folder.
-std::pair<dev_t, ino_t> identity(const fs::path& path)
-{
-    struct stat status {};
-    EXPECT_EQ(::stat(path.c_str(), &status), 0) << path;
-    return {status.st_dev, status.st_ino};
-}
-
-TEST(TimeFolderWriter, CommitIntoAnExistingTimeSwapsInAWholeFolderThatHardLinksTheKeptFiles)
-{
-    // Not the old folder filled file by file (a kill -9 in between would leave a mix), but a
-    // new folder holding the staged files and links to the kept ones, swapped in at once.
-    TempDir dir("commitExchange");
-    writeText(dir.path() / "0.5" / "U", "velocity of a flow solver");
-    writeText(dir.path() / "0.5" / "uniform" / "time", "time dictionary");
-    writeText(dir.path() / "0.5" / "polyMesh" / "points", "old points");
-    writeText(dir.path() / "0.5" / "polyMesh" / "faces", "faces of a topology change");
-    const auto oldFolder = identity(dir.path() / "0.5");
-    const auto oldU = identity(dir.path() / "0.5" / "U");
-    const auto oldFaces = identity(dir.path() / "0.5" / "polyMesh" / "faces");
-    {
-        io::TimeFolderWriter folder(dir.path(), "0.5");
-        writeText(folder.staging() / "polyMesh" / "points.gz", "new points");
-        writeText(folder.staging() / "pointDisplacement", "new displacement");
-        folder.commit();
-    }
-    EXPECT_NE(identity(dir.path() / "0.5"), oldFolder) << "the folder was filled in place, not swapped";
-    EXPECT_EQ(identity(dir.path() / "0.5" / "U"), oldU) << "U was copied, not linked";
-    EXPECT_EQ(identity(dir.path() / "0.5" / "polyMesh" / "faces"), oldFaces);
-    EXPECT_EQ(readText(dir.path() / "0.5" / "U"), "velocity of a flow solver");
-    EXPECT_EQ(readText(dir.path() / "0.5" / "uniform" / "time"), "time dictionary");
-    EXPECT_EQ(readText(dir.path() / "0.5" / "polyMesh" / "points.gz"), "new points");
-    EXPECT_EQ(readText(dir.path() / "0.5" / "pointDisplacement"), "new displacement");
-    EXPECT_FALSE(fs::exists(dir.path() / "0.5" / "polyMesh" / "points"));
-    // The old folder (now under the staging name) is gone too.
-    EXPECT_EQ(std::distance(fs::directory_iterator(dir.path()), fs::directory_iterator()), 1);
-}
-
-TEST(TimeFolderWriter, AWriterThatFailsBeforeCommitLeavesNothingBehind)
-{
-    TempDir dir("failed");
-    try {
-        io::TimeFolderWriter folder(dir.path(), "1e-05");
-        writeText(folder.staging() / "polyMesh" / "points", "half");
-        throw std::runtime_error("disk full");
-    } catch (const std::runtime_error&) {
-    }
-    EXPECT_TRUE(fs::is_empty(dir.path()));
-}
-
-TEST(TimeFolderWriter, RecognisesAndRemovesStaleStagingFolders)
-{
-    EXPECT_TRUE(io::isTimeFolderStagingName("0.5.tmp-1a2b-3"));
-    EXPECT_TRUE(io::isTimeFolderStagingName("1e-05.tmp-ff-0"));
-    EXPECT_FALSE(io::isTimeFolderStagingName("0.5"));
-    EXPECT_FALSE(io::isTimeFolderStagingName("constant.tmp-12"));
-    EXPECT_FALSE(io::isTimeFolderStagingName("0.orig"));
-    EXPECT_FALSE(io::isTimeFolderStagingName("0.5.tmp-"));
-    EXPECT_FALSE(io::isTimeFolderStagingName("0.5.tmp-xyz"));
-
-    TempDir dir("stale");
-    fs::create_directories(dir.path() / "0.1.tmp-ab-0" / "polyMesh");
-    fs::create_directories(dir.path() / "0.1");
-    fs::create_directories(dir.path() / "notes.tmp-1");
-    EXPECT_EQ(io::removeStaleStagingFolders(dir.path()), std::vector<std::string>{"0.1.tmp-ab-0"});
-    EXPECT_FALSE(fs::exists(dir.path() / "0.1.tmp-ab-0"));
-    EXPECT_TRUE(fs::exists(dir.path() / "0.1"));
-    EXPECT_TRUE(fs::exists(dir.path() / "notes.tmp-1"));
-}
-
-// ---- runs ----------------------------------------------------------------------------------------
 
 TEST(MoveMeshRun, WritesEveryWriteIntervalStepsInFoldersWithOpenFoamNames)
 {
@@ -999,9 +689,6 @@ TEST(MoveMeshRun, ParallelOptionOnOneProcessRunsNormally)
     EXPECT_TRUE(contains(out.str(), "Time = 0.05 ")) << out.str();
 }
 
-
-// ---- solves that fail ------------------------------------------------------------------------------
-
 // The left side turns by 0.3 rad at t = 0.05 (about its midpoint): Newton needs several
 // iterations from the linearized start, a Krylov method without preconditioner many.
 const std::string turningBoundary = R"foam(
@@ -1149,8 +836,6 @@ TEST(MoveMeshRun, ABoundaryConditionGivingAnInfiniteDisplacementIsBadInputNaming
     std::erase_if(after, [](const auto& entry) { return entry.first.rfind("postProcessing", 0) == 0; });
     EXPECT_EQ(after, before);
 }
-
-// ---- memory ------------------------------------------------------------------------------------------
 
 // Sets an environment variable for one scope.
 class ScopedEnvironment {

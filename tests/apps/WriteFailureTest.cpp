@@ -10,7 +10,7 @@
 // cannot mount one). A filler file of a different size in each run moves the failing write
 // over the files of a step: points, pointDisplacement, the .vtu, the .pvd, the log.
 
-#include "CompressionCase.hpp"
+#include "TestCases.hpp"
 #include "MoveMeshProcess.hpp"
 #include "ScratchFiles.hpp"
 #include "SmallTmpfs.hpp"

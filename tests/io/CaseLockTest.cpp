@@ -5,7 +5,7 @@
 // A run killed with SIGKILL leaves no lock behind.
 
 #include "CaseLock.hpp"
-#include "CompressionCase.hpp"
+#include "TestCases.hpp"
 #include "MoveMeshProcess.hpp"
 #include "ScratchFiles.hpp"
 

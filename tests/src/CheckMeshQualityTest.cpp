@@ -10,28 +10,38 @@
 
 #include "CellShape.hpp"
 #include "CheckMeshQuality.hpp"
+#include "MeshGenerators.hpp"
 #include "MeshGeometry.hpp"
 #include "MeshTopology.hpp"
+#include "PlanarMesh.hpp"
 #include "PolyMeshReader.hpp"
+#include "PseudoTwoDExtraction.hpp"
 #include "QualityReport.hpp"
+#include "TestCases.hpp"
 #include "ThesisQuality.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <map>
+#include <numbers>
 #include <optional>
 #include <regex>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
+
+using namespace rbm::test::qualityCases;
 
 namespace {
 
 namespace fs = std::filesystem;
-using rbm::Label;
 
 const fs::path fixtureRoot = fs::path(RBM_TEST_DATA_DIR) / "checkMesh";
 
@@ -380,6 +390,194 @@ TEST(TwoDimensionalAgreement, FoldedCellsOfAMovedTwoDimensionalMeshAreInvertedPl
     EXPECT_FALSE(report.isValid());
     // Evaluating the initial points again gives the valid mesh back.
     EXPECT_TRUE(evaluator.evaluate(mesh.points).isValid());
+}
+
+} // namespace
+
+namespace {
+
+TEST(CheckMeshQuality, ShearedNeighbourHasTheAngleOfItsCentreLine)
+{
+    // Centres (0.5, 0.5, 0.5) and (1.5, 0.5 + s/2, 0.5); face normal +x: angle atan(s/2).
+    const double shear = 1.0;
+    const PolyMesh mesh = shearedPair(shear);
+    const auto g = rbm::computeMeshGeometry(mesh);
+    const auto q = rbm::computeCheckMeshQuality(mesh, g);
+    const double expected = degrees(std::atan(shear / 2));   // 26.565051177077990
+    EXPECT_NEAR(q.maxNonOrthogonality, expected, 1e-12);
+    EXPECT_NEAR(q.averageNonOrthogonality, expected, 1e-12);   // one internal face
+    EXPECT_EQ(q.severelyNonOrthogonalFaceCount, 0);
+    EXPECT_NEAR(q.totalVolume, 2.0, 1e-14);
+    EXPECT_NEAR(q.minCellVolume, 1.0, 1e-14);
+}
+
+TEST(CheckMeshQuality, SkewnessOfTheShearedPairFollowsOpenFoamsNormalisation)
+{
+    const PolyMesh mesh = shearedPair(1.0);
+    const auto g = rbm::computeMeshGeometry(mesh);
+    // Internal face x = 1: the centre line crosses it at y = 0.75, the face centre is at
+    // y = 0.5: |sv| = 0.25; fd = max(0.2 |d|, half the face width 0.5) = 0.5 -> 0.5.
+    ASSERT_EQ(mesh.internalFaceCount(), 1);
+    EXPECT_NEAR(rbm::faceSkewness(mesh.face(0), mesh.points, g.faceCentres[0], g.faceAreas[0], g.cellCentres[0],
+                                  g.cellCentres[1]),
+                0.5, 1e-14);
+    // The far face x = 2 of cell 1: mirrored neighbour, |sv| = s/2 = 0.5, fd = 0.5 -> 1.
+    // The sheared side faces of cell 1: |sv| = sqrt(2)/4, fd = sqrt(2)/2 -> 0.5. The cube's
+    // boundary faces: 0. So the largest is 1.
+    const auto q = rbm::computeCheckMeshQuality(mesh, g);
+    EXPECT_NEAR(q.maxSkewness, 1.0, 1e-14);
+    EXPECT_EQ(q.severelySkewFaceCount, 0);
+}
+
+TEST(CheckMeshQuality, AspectRatioIsTheRatioOfDirectionalAreaSums)
+{
+    // Cell 1 of the sheared pair: component-wise |S| sums (4, 2, 2) -> 2, more than the
+    // hydraulic measure (4+2+2)/6/V^(2/3) = 4/3. The cube: 1.
+    const PolyMesh mesh = shearedPair(1.0);
+    const auto q = rbm::computeCheckMeshQuality(mesh, rbm::computeMeshGeometry(mesh));
+    EXPECT_NEAR(q.maxAspectRatio, 2.0, 1e-14);
+    // A 4 x 1 x 1 box cell: sums (2, 8, 8) -> 4; hydraulic (18/6)/4^(2/3) = 1.19.
+    const PolyMesh box = rbm::makeHexBox(1, 1, 1, {0, 0, 0}, {4, 1, 1});
+    EXPECT_NEAR(rbm::computeCheckMeshQuality(box, rbm::computeMeshGeometry(box)).maxAspectRatio, 4.0, 1e-14);
+    // A flat 1 x 1 x 0.01 cube: sums (0.02, 0.02, 2) -> 100.
+    const PolyMesh flat = rbm::makeHexBox(1, 1, 1, {0, 0, 0}, {1, 1, 0.01});
+    EXPECT_NEAR(rbm::computeCheckMeshQuality(flat, rbm::computeMeshGeometry(flat)).maxAspectRatio, 100.0, 1e-10);
+}
+
+TEST(CheckMeshQuality, TwoDimensionalMeshIgnoresTheEmptyDirectionInAspectRatio)
+{
+    // One layer 1 x 0.5 in-plane, 0.01 thick, empty front and back: in 3D the ratio would
+    // be about 100; checkMesh uses only x and y: sums (2 * 0.005, 2 * 0.01) -> 2.
+    const PolyMesh mesh = rbm::makeExtruded2D(1, 1, {0, 0, 0}, {1, 0.5, 0.01});
+    const auto q = rbm::computeCheckMeshQuality(mesh, rbm::computeMeshGeometry(mesh));
+    EXPECT_EQ(q.geometricDirections, (std::array<int, 3>{1, 1, 0}));
+    EXPECT_EQ(q.solutionDirections, (std::array<int, 3>{1, 1, 0}));
+    EXPECT_EQ(q.geometricDimensionCount(), 2);
+    EXPECT_NEAR(q.maxAspectRatio, 2.0, 1e-12);
+}
+
+TEST(CheckMeshQuality, WedgeDirectionIsNotGeometricButStillSolved)
+{
+    const PolyMesh mesh = rbm::makeWedge2D(3, 2, {0, 0, 0}, {1, 1, 0}, 5.0);
+    const auto q = rbm::computeCheckMeshQuality(mesh, rbm::computeMeshGeometry(mesh));
+    // The wedge planes straddle z = 0 about the x axis: z is the wedge direction.
+    EXPECT_EQ(q.geometricDirections, (std::array<int, 3>{1, 1, 0}));
+    EXPECT_EQ(q.solutionDirections, (std::array<int, 3>{1, 1, 1}));
+}
+
+TEST(CheckMeshQuality, MirroredCellFailsTheVolumeAndPyramidChecks)
+{
+    auto points = unitCubePoints();
+    for (auto& p : points) p.x = -p.x;
+    const PolyMesh mesh = buildMesh(points, {hexFaces()});
+    const auto q = rbm::computeCheckMeshQuality(mesh, rbm::computeMeshGeometry(mesh));
+    EXPECT_EQ(q.nonPositiveVolumeCellCount, 1);
+    EXPECT_NEAR(q.minCellVolume, -1.0, 1e-15);
+    EXPECT_EQ(q.incorrectlyOrientedPyramidCount, 6);   // every face's owner pyramid
+    EXPECT_TRUE(q.hasInvalidCells());
+    // checkMesh's aspect ratio takes V as max(ROOTVSMALL, V): a negative volume gives 1e100,
+    // so the closed-cells check fails too: volumes, pyramids, closed cells.
+    EXPECT_EQ(q.highAspectRatioCellCount, 1);
+    EXPECT_EQ(q.failedCheckCount(), 3);
+}
+
+TEST(CheckMeshQuality, CellFoldedBackThroughItsNeighbourIsANonOrthogonalityError)
+{
+    // Move the far face of the second cell to x = -0.5, behind the shared face x = 1: the
+    // cell is inverted (volume -1.5) and its centre (x = 0.25) lies behind the owner's
+    // (x = 0.5), so the centre line runs against the face normal: 180 degrees.
+    auto mesh = shearedPair(0.0);
+    for (Label p = 8; p < 12; ++p) mesh.points[p].x = -0.5;
+    const auto g = rbm::computeMeshGeometry(mesh);
+    EXPECT_NEAR(g.cellVolumes[1], -1.5, 1e-14);
+    const auto q = rbm::computeCheckMeshQuality(mesh, g);
+    EXPECT_EQ(q.nonOrthogonalityErrorCount, 1);
+    EXPECT_NEAR(q.maxNonOrthogonality, 180.0, 1e-6);
+    EXPECT_EQ(q.nonPositiveVolumeCellCount, 1);
+    EXPECT_GT(q.incorrectlyOrientedPyramidCount, 0);
+    EXPECT_EQ(q.failedCheckCount(), 4);   // volumes, non-orthogonality, pyramids, aspect ratio
+    const auto thesis = rbm::computeThesisQuality3D(mesh, g);
+    EXPECT_EQ(thesis.invertedCellCount, 1);
+    EXPECT_NEAR(thesis.nonOrthogonality.max, 180.0, 1e-6);
+}
+
+TEST(CheckMeshQuality, ValidBoxPassesEveryCheck)
+{
+    const PolyMesh mesh = rbm::makeHexBox(3, 2, 2, {0, 0, 0}, {3, 1, 1});
+    const auto q = rbm::computeCheckMeshQuality(mesh, rbm::computeMeshGeometry(mesh));
+    EXPECT_EQ(q.failedCheckCount(), 0);
+    EXPECT_FALSE(q.hasInvalidCells());
+    EXPECT_NEAR(q.maxNonOrthogonality, 0.0, 1e-5);
+    EXPECT_NEAR(q.maxSkewness, 0.0, 1e-12);
+    EXPECT_NEAR(q.totalVolume, 3.0, 1e-14);
+    EXPECT_NEAR(q.maxAspectRatio, 2.0, 1e-14);   // cells 1 x 0.5 x 0.5
+    EXPECT_NEAR(q.maxCellOpenness, 0.0, 1e-15);
+    EXPECT_NEAR(q.averageFaceWeight, 0.5, 1e-15);
+    EXPECT_NEAR(q.minVolumeRatio, 1.0, 1e-15);
+}
+
+// Both ways for `mesh` at `points`; the extrusion's result must exist.
+void expectExtrusionExtremesLikeTheDecompositions(const PolyMesh& mesh, const std::vector<Vector3>& points,
+                                                  const std::string& name)
+{
+    const rbm::PseudoTwoDMesh twoD = rbm::extractPseudoTwoD(mesh, rbm::buildMeshTopology(mesh));
+    rbm::ExtrusionExtremesWorkspace workspace;
+    const auto fast = rbm::computeExtrusionCheckMeshExtremes(mesh, twoD, points, workspace);
+    ASSERT_TRUE(fast.has_value()) << name;
+    rbm::MeshGeometry geometry;
+    rbm::updateMeshGeometry(mesh, points, geometry);
+    rbm::CheckMeshExtremesWorkspace extremesWorkspace;
+    const rbm::CheckMeshExtremes expected = rbm::computeCheckMeshExtremes(mesh, points, geometry, extremesWorkspace);
+    std::printf("%s: max non-orthogonality %.17g (decompositions %.17g), max skewness %.17g (%.17g)\n", name.c_str(),
+                fast->maxNonOrthogonality, expected.maxNonOrthogonality, fast->maxSkewness, expected.maxSkewness);
+    EXPECT_GT(expected.maxNonOrthogonality, 1.0) << name;  // not a trivial grid
+    EXPECT_NEAR(fast->maxNonOrthogonality, expected.maxNonOrthogonality, 1e-12 * expected.maxNonOrthogonality) << name;
+    EXPECT_NEAR(fast->maxSkewness, expected.maxSkewness, 1e-12 * expected.maxSkewness) << name;
+}
+
+// The 2D checkMesh fixtures and the boundary-layer airfoil (aspect ratio ~780), the latter also
+// moved: every node turned about the trailing edge by an angle falling off with the distance,
+// front and back alike (as rbm's 2D path moves them).
+TEST(ExtrusionExtremes, AreTheDecompositionsFiguresToRounding)
+{
+    const std::filesystem::path data(RBM_TEST_DATA_DIR);
+    // (quad2D: blockMesh's arcs round each plane on its own, so its twins differ in the last
+    // bits and its back plane has five values of z: an extrusion to rounding.)
+    for (const char* fixture : {"checkMesh/quad2D", "checkMesh/prism2D", "airfoilBoundaryLayer"}) {
+        const PolyMesh mesh = rbm::io::readPolyMesh(data / fixture / "constant" / "polyMesh");
+        expectExtrusionExtremesLikeTheDecompositions(mesh, mesh.points, fixture);
+    }
+    const PolyMesh airfoil = rbm::io::readPolyMesh(data / "airfoilBoundaryLayer" / "constant" / "polyMesh");
+    std::vector<Vector3> moved = airfoil.points;
+    for (Vector3& p : moved) {
+        const double dx = p.x - 1.0, dy = p.y;
+        const double angle = 0.07 * std::exp(-0.5 * (dx * dx + dy * dy));
+        p.x = 1.0 + std::cos(angle) * dx - std::sin(angle) * dy;
+        p.y = std::sin(angle) * dx + std::cos(angle) * dy;
+        if (p.z > 0.0) p.z += 2e-17;  // as a turned body's rotation rounds it (0.1 + 2e-17)
+    }
+    expectExtrusionExtremesLikeTheDecompositions(airfoil, moved, "turned airfoil");
+}
+
+TEST(ExtrusionExtremes, LeaveNonExtrusionsAndInvertedCellsToTheDecompositions)
+{
+    const PolyMesh mesh = rbm::makeExtruded2D(3, 3, {0, 0, 0}, {3, 3, 1});
+    const rbm::PseudoTwoDMesh twoD = rbm::extractPseudoTwoD(mesh, rbm::buildMeshTopology(mesh));
+    rbm::ExtrusionExtremesWorkspace workspace;
+    ASSERT_TRUE(rbm::computeExtrusionCheckMeshExtremes(mesh, twoD, mesh.points, workspace).has_value());
+    // One back point moved in its plane without its front twin: no longer an extrusion.
+    std::vector<Vector3> sheared = mesh.points;
+    sheared[twoD.backPointOfNode[5]].x += 0.1;
+    EXPECT_FALSE(rbm::computeExtrusionCheckMeshExtremes(mesh, twoD, sheared, workspace).has_value());
+    // One point out of its plane.
+    std::vector<Vector3> bent = mesh.points;
+    bent[twoD.frontPointOfNode[5]].z += 0.01;
+    EXPECT_FALSE(rbm::computeExtrusionCheckMeshExtremes(mesh, twoD, bent, workspace).has_value());
+    // Node (1, 1) pushed to x = 4 on both planes folds two cells (StepQuality.Folded...).
+    std::vector<Vector3> folded = mesh.points;
+    for (Vector3& p : folded)
+        if (p.x == 1.0 && p.y == 1.0) p.x = 4.0;
+    EXPECT_FALSE(rbm::computeExtrusionCheckMeshExtremes(mesh, twoD, folded, workspace).has_value());
 }
 
 } // namespace

@@ -12,7 +12,7 @@
 #include "MotionSolverRegistry.hpp"
 #include "PointPatchDisplacement.hpp"
 #include "RbmEnergy.hpp"
-#include "RbmSolverCases.hpp"
+#include "TestCases.hpp"
 #include "RigidBodyMotionSolver.hpp"
 #include "ShortestEdges.hpp"
 

@@ -20,11 +20,11 @@
 #include "WholeFile.hpp"
 
 #include <gtest/gtest.h>
+
 #include <vtkNew.h>
 #include <vtkObject.h>
 #include <vtkOutputWindow.h>
 #include <vtkPoints.h>
-
 #include <filesystem>
 #include <functional>
 #include <stdexcept>
@@ -36,7 +36,6 @@ namespace {
 namespace fs = std::filesystem;
 using namespace rbm;
 using rbm::test::readText;
-using rbm::test::snapshot;
 using rbm::test::TempDir;
 using rbm::test::writeText;
 
@@ -167,28 +166,6 @@ TEST_F(WriteErrorMessage, FullDiskKeepsTheOldFileAndLeavesNoTemporary)
     EXPECT_EQ(message, "cannot write " + logFile.string() + ": No space left on device");
     const std::string log = readText(logFile);
     EXPECT_TRUE(log.empty() || log.back() == '\n') << "a partial line";
-}
-
-TEST(VtkMessageCapture, VtkMessagesAreKeptAndNotPrinted)
-{
-    vtkNew<vtkPoints> source;
-    ::testing::internal::CaptureStderr();
-    ::testing::internal::CaptureStdout();
-    {
-        io::VtkMessageCapture capture;
-        vtkErrorWithObjectMacro(source.GetPointer(), << "the disk is full");
-        vtkGenericWarningMacro(<< "a warning");
-        ASSERT_EQ(capture.messages().size(), 2u);
-        EXPECT_TRUE(capture.hasErrors());
-        EXPECT_NE(capture.messages()[0].find("the disk is full"), std::string::npos) << capture.messages()[0];
-        EXPECT_EQ(capture.messages()[0].find("ERROR: In"), std::string::npos) << capture.messages()[0];
-        EXPECT_NE(capture.summary().find("the disk is full"), std::string::npos);
-        EXPECT_NE(capture.summary().find("; "), std::string::npos);
-    }
-    const std::string printed = ::testing::internal::GetCapturedStderr() + ::testing::internal::GetCapturedStdout();
-    EXPECT_EQ(printed, "");
-    // VTK's own window is back afterwards.
-    EXPECT_STRNE(vtkOutputWindow::GetInstance()->GetClassName(), "Window");
 }
 
 } // namespace

@@ -1,16 +1,40 @@
-// rbm's defaults for the direct solver (motionSolvers/linearAlgebra/PetscSupport.cpp): MUMPS orders 2D
-// systems with AMF (ICNTL(7) = 2) and 3D ones with its own automatic choice; an option given
-// by the user wins; the option copy lives only as long as the solver.
+// Tests of PetscSupport (motionSolvers/linearAlgebra/PetscSupport.cpp). DirectSolverDefaults:
+// rbm's defaults for the direct solver: MUMPS orders 2D systems with AMF (ICNTL(7) = 2) and 3D
+// ones with its own automatic choice; an option given by the user wins; the option copy lives
+// only as long as the solver. PetscSupport: PETSc errors as exceptions, and the solver options
+// (rbm's prefix, global options, view options) reaching the solvers.
 
 #include "BlockRowLayout.hpp"
+#include "CoupledLinearizedSolver.hpp"
+#include "CoupledNewtonSolver.hpp"
+#include "DecoupledSolver.hpp"
+#include "LocalGlobalSolver.hpp"
 #include "PetscSupport.hpp"
 #include "PetscTestEnvironment.hpp"
+#include "RbmEnergy.hpp"
+#include "RbmProblem.hpp"
+#include "ReducedNewtonSolver.hpp"
+#include "RigidMotionModes.hpp"
+#include "SubStepping.hpp"
+#include "TestCases.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
+#include <functional>
+#include <memory>
+#include <numbers>
+#include <numeric>
+#include <ostream>
+#include <random>
+#include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
+
+using namespace rbm::motion::coreCases;
 
 static auto* const petscEnvironment = ::testing::AddGlobalTestEnvironment(new rbm::test::PetscTestEnvironment);
 
@@ -139,3 +163,95 @@ TEST(DirectSolverDefaults, AGivenOrderingWins)
 #endif
 
 } // namespace
+
+namespace rbm::motion {
+
+namespace {
+
+TEST(PetscSupport, CheckPetscTurnsAnErrorIntoAnExceptionWithPetscsMessage)
+{
+    PetscKsp ksp;
+    RBM_CHECK_PETSC(KSPCreate(PETSC_COMM_SELF, ksp.out()));
+    try {
+        RBM_CHECK_PETSC(KSPSetType(ksp, "noSuchKrylovMethod"));
+        FAIL() << "no exception";
+    } catch (const PetscException& error) {
+        const std::string message = error.what();
+        EXPECT_NE(message.find("KSPSetType(ksp, \"noSuchKrylovMethod\")"), std::string::npos) << message;
+        EXPECT_NE(message.find("Unable to find requested KSP type noSuchKrylovMethod"), std::string::npos) << message;
+        EXPECT_NE(error.code(), 0);
+    }
+}
+
+// Sets PETSc options for one test and removes them afterwards.
+class ScopedOptions {
+public:
+    explicit ScopedOptions(std::vector<std::pair<std::string, std::string>> options) : options_(std::move(options))
+    {
+        for (const auto& [name, value] : options_)
+            RBM_CHECK_PETSC(PetscOptionsSetValue(nullptr, name.c_str(), value.empty() ? nullptr : value.c_str()));
+    }
+    ~ScopedOptions()
+    {
+        for (const auto& option : options_) (void)PetscOptionsClearValue(nullptr, option.first.c_str());
+    }
+
+private:
+    std::vector<std::pair<std::string, std::string>> options_;
+};
+
+TEST(PetscSupport, SolverOptionsWithTheRbmPrefixOverrideTheDefaults)
+{
+    // 2D defaults to a direct factorisation (0 Krylov iterations); the options ask for CG.
+    const SquaresCase c = squaresCase(21, 4, degrees(10.0));
+    const RbmProblem problem(2, c.mesh.points, c.mesh.graph, c.constraints, EdgeWeighting::uniform);
+    CoupledLinearizedSolver direct(problem);
+    const RbmResult byDirect = direct.solve(c.prescribed);
+    EXPECT_EQ(byDirect.linearIterations, 0);
+    const ScopedOptions options({{"-rbm_linearized_ksp_type", "cg"}, {"-rbm_linearized_pc_type", "jacobi"},
+                                 {"-rbm_linearized_ksp_rtol", "1e-13"}});
+    CoupledLinearizedSolver iterative(problem);
+    const RbmResult byIterative = iterative.solve(c.prescribed);
+    ASSERT_TRUE(byIterative.converged) << byIterative.reason;
+    EXPECT_GT(byIterative.linearIterations, 10);
+    for (std::size_t node = 0; node < c.mesh.points.size(); ++node)
+        ASSERT_LT(norm(byIterative.displacement[node] - byDirect.displacement[node]), 1e-8);
+}
+
+TEST(PetscSupport, GlobalSolverOptionsAreHonoured)
+{
+    const SquaresCase c = squaresCase(21, 4, degrees(10.0));
+    const RbmProblem problem(2, c.mesh.points, c.mesh.graph, c.constraints, EdgeWeighting::uniform);
+    const ScopedOptions options({{"-ksp_type", "cg"}, {"-pc_type", "icc"}});
+    LocalGlobalSolver solver(problem);
+    const RbmResult result = solver.solve(c.prescribed);
+    ASSERT_TRUE(result.converged) << result.reason;
+    EXPECT_GT(result.linearIterations, result.iterations);  // Krylov iterations in every Laplacian solve
+}
+
+TEST(PetscSupport, GlobalViewOptionsReachTheSolversAndSpecificOnesWin)
+{
+    // -snes_converged_reason is looked up at solve time under the solver's prefix.
+    const SquaresCase c = squaresCase(11, 2, degrees(10.0));
+    const RbmProblem problem(2, c.mesh.points, c.mesh.graph, c.constraints, EdgeWeighting::uniform);
+    std::string printed;
+    {
+        const ScopedOptions options({{"-snes_converged_reason", ""}, {"-ksp_converged_reason", ""},
+                                     {"-rbm_linearized_ksp_converged_reason", "::failed"}});
+        CoupledNewtonSolver solver(problem);
+        ::testing::internal::CaptureStdout();
+        const RbmResult result = solver.solve(c.prescribed);
+        printed = ::testing::internal::GetCapturedStdout();
+        ASSERT_TRUE(result.converged) << result.reason;
+    }
+    EXPECT_NE(printed.find("Nonlinear rbm_newton_ solve converged"), std::string::npos) << printed;
+    EXPECT_NE(printed.find("Linear rbm_newton_ solve converged"), std::string::npos) << printed;
+    EXPECT_EQ(printed.find("Linear rbm_linearized_ solve"), std::string::npos) << printed;  // only failures
+    // The copies under rbm_newton_ leave with the solver.
+    PetscBool left = PETSC_TRUE;
+    RBM_CHECK_PETSC(PetscOptionsHasName(nullptr, nullptr, "-rbm_newton_snes_converged_reason", &left));
+    EXPECT_EQ(left, PETSC_FALSE);
+}
+
+} // namespace
+} // namespace rbm::motion

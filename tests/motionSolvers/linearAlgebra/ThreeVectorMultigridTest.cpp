@@ -7,6 +7,7 @@
 // iterations, independent of the grid size).
 
 #include "PetscTestEnvironment.hpp"
+#include "TestCases.hpp"
 #include "ThreadCount.hpp"
 #include "ThreeVectorMultigrid.hpp"
 #include "VectorInstructions.hpp"
@@ -14,66 +15,19 @@
 #include <gtest/gtest.h>
 
 #include <petscsys.h>
-
 #include <algorithm>
 #include <cmath>
 #include <random>
 #include <vector>
 
+using namespace rbm::test::multigridCases;
+
 static ::testing::Environment* const petscEnvironment =
     ::testing::AddGlobalTestEnvironment(new rbm::test::PetscTestEnvironment);
 
 namespace rbm::motion {
+
 namespace {
-
-// K on the (n − 1)³ interior nodes of an n³-cell unit cube: neighbours = the 26 nodes sharing a
-// cell, weight 1/|d|², K_ii = Σ_j w (boundary neighbours fixed), K_ij = −w. Rows sorted.
-struct Laplacian {
-    int rows = 0;
-    std::vector<int> offsets{0}, columns;
-    std::vector<double> values;
-
-    std::vector<double> times(const std::vector<double>& x) const  // 3 interleaved vectors
-    {
-        std::vector<double> y(x.size(), 0.0);
-        for (int row = 0; row < rows; ++row)
-            for (int k = offsets[row]; k < offsets[row + 1]; ++k)
-                for (int c = 0; c < 3; ++c) y[3 * row + c] += values[k] * x[3 * columns[k] + c];
-        return y;
-    }
-};
-
-Laplacian hexLaplacian(int n)
-{
-    Laplacian K;
-    const int m = n - 1;
-    K.rows = m * m * m;
-    const double h = 1.0 / n;
-    auto index = [m](int i, int j, int k) { return (i - 1) + m * ((j - 1) + m * (k - 1)); };
-    for (int k = 1; k <= m; ++k)
-        for (int j = 1; j <= m; ++j)
-            for (int i = 1; i <= m; ++i) {
-                double diagonal = 0.0;
-                std::vector<std::pair<int, double>> row;
-                for (int dk = -1; dk <= 1; ++dk)
-                    for (int dj = -1; dj <= 1; ++dj)
-                        for (int di = -1; di <= 1; ++di) {
-                            if (di == 0 && dj == 0 && dk == 0) continue;
-                            const double w = 1.0 / ((di * di + dj * dj + dk * dk) * h * h);
-                            diagonal += w;
-                            const int a = i + di, b = j + dj, c = k + dk;
-                            if (a >= 1 && a <= m && b >= 1 && b <= m && c >= 1 && c <= m) row.emplace_back(index(a, b, c), -w);
-                        }
-                row.emplace_back(index(i, j, k), diagonal);
-                std::sort(row.begin(), row.end());
-                for (const auto& [column, value] : row) {
-                    K.columns.push_back(column);
-                    K.values.push_back(value);
-                }
-                K.offsets.push_back(static_cast<int>(K.columns.size()));
-            }
-    return K;
-}
 
 double dot(const std::vector<double>& a, const std::vector<double>& b)
 {
@@ -180,106 +134,6 @@ TEST(ThreeVectorMultigrid, PreconditionsCGIndependentlyOfTheGridSize)
         EXPECT_LE(iterations[2], iterations[0] + 3) << name;
     }
     ASSERT_EQ(PetscOptionsClearValue(nullptr, "-rbm_cycletestgamg_cycle_hierarchy"), 0);
-}
-
-TEST(SmoothedAggregation, AggregatesAreConnectedNeighbourhoodsCoveringEveryRow)
-{
-    const Laplacian K = hexLaplacian(13);  // 12³ rows, 27-point stencil
-    int count = 0;
-    const std::vector<int> aggregate = aggregateRows(K.offsets, K.columns, K.values, count);
-    ASSERT_EQ(static_cast<int>(aggregate.size()), K.rows);
-    std::vector<std::vector<int>> members(static_cast<std::size_t>(count));
-    for (int row = 0; row < K.rows; ++row) {
-        ASSERT_GE(aggregate[row], 0);
-        ASSERT_LT(aggregate[row], count);
-        members[aggregate[row]].push_back(row);
-    }
-    std::size_t largest = 0;
-    for (const std::vector<int>& rows : members) {
-        ASSERT_FALSE(rows.empty());
-        largest = std::max(largest, rows.size());
-        // Connected: a search from its first row, through neighbours in the same aggregate,
-        // reaches all of it.
-        std::vector<int> reached{rows.front()}, stack{rows.front()};
-        while (!stack.empty()) {
-            const int row = stack.back();
-            stack.pop_back();
-            for (int k = K.offsets[row]; k < K.offsets[row + 1]; ++k) {
-                const int column = K.columns[k];
-                if (aggregate[column] == aggregate[row] &&
-                    std::find(reached.begin(), reached.end(), column) == reached.end()) {
-                    reached.push_back(column);
-                    stack.push_back(column);
-                }
-            }
-        }
-        EXPECT_EQ(reached.size(), rows.size());
-    }
-    // A node and its whole neighbourhood: 3 × 3 × 3 rows inside the grid; 12³ rows make about
-    // 4³ aggregates, and no more than an eighth of the rows.
-    EXPECT_GE(largest, 27u);
-    EXPECT_LE(count, K.rows / 8);
-    EXPECT_GE(count, K.rows / 64);
-}
-
-TEST(SmoothedAggregation, CoarseOperatorIsTheGalerkinProductAndInterpolatesConstants)
-{
-    // Independently: Pᵀ A P by dense products, against PETSc's sparse one; the smoothed
-    // prolongator interpolates the constant exactly on rows whose row sum is 0 (inside the
-    // grid: (I − ω D⁻¹A) 1 = 1 there), and the coarse operator is symmetric, positive on its
-    // diagonal.
-    const Laplacian K = hexLaplacian(8);  // 343 rows
-    const std::vector<AggregationLevel> levels = buildSmoothedAggregation(K.offsets, K.columns, K.values, 10);
-    ASSERT_GE(levels.size(), 1u);
-    const CompressedRows& p = levels[0].interpolation;
-    const CompressedRows& coarse = levels[0].coarseOperator;
-    const int n = K.rows, nc = coarse.rows();
-    ASSERT_EQ(p.rows(), n);
-    ASSERT_LT(nc, n / 4);
-    int insideRows = 0;
-    std::vector<double> denseA(static_cast<std::size_t>(n) * n, 0.0), denseP(static_cast<std::size_t>(n) * nc, 0.0);
-    for (int row = 0; row < n; ++row) {
-        double rowSum = 0.0, diagonal = 0.0;
-        for (int k = K.offsets[row]; k < K.offsets[row + 1]; ++k) {
-            denseA[static_cast<std::size_t>(row) * n + K.columns[k]] = K.values[k];
-            rowSum += K.values[k];
-            if (K.columns[k] == row) diagonal = K.values[k];
-        }
-        double interpolatedOne = 0.0;
-        for (int k = p.offsets[row]; k < p.offsets[row + 1]; ++k) {
-            denseP[static_cast<std::size_t>(row) * nc + p.columns[k]] = p.values[k];
-            interpolatedOne += p.values[k];
-        }
-        if (std::abs(rowSum) < 1e-9 * diagonal) {
-            EXPECT_NEAR(interpolatedOne, 1.0, 1e-12) << row;
-            ++insideRows;
-        }
-    }
-    EXPECT_EQ(insideRows, 5 * 5 * 5);  // the rows none of whose neighbours is on the boundary
-    double largest = 0.0;
-    std::vector<double> expected(static_cast<std::size_t>(nc) * nc, 0.0);
-    for (int a = 0; a < nc; ++a)
-        for (int b = 0; b < nc; ++b) {
-            double sum = 0.0;
-            for (int i = 0; i < n; ++i) {
-                const double pia = denseP[static_cast<std::size_t>(i) * nc + a];
-                if (pia == 0.0) continue;
-                for (int j = 0; j < n; ++j) sum += pia * denseA[static_cast<std::size_t>(i) * n + j] * denseP[static_cast<std::size_t>(j) * nc + b];
-            }
-            expected[static_cast<std::size_t>(a) * nc + b] = sum;
-            largest = std::max(largest, std::abs(sum));
-        }
-    std::vector<double> actual(static_cast<std::size_t>(nc) * nc, 0.0);
-    for (int row = 0; row < nc; ++row)
-        for (int k = coarse.offsets[row]; k < coarse.offsets[row + 1]; ++k)
-            actual[static_cast<std::size_t>(row) * nc + coarse.columns[k]] = coarse.values[k];
-    for (int a = 0; a < nc; ++a) {
-        EXPECT_GT(actual[static_cast<std::size_t>(a) * nc + a], 0.0);
-        for (int b = 0; b < nc; ++b) {
-            EXPECT_NEAR(actual[static_cast<std::size_t>(a) * nc + b], expected[static_cast<std::size_t>(a) * nc + b], 1e-12 * largest);
-            EXPECT_NEAR(actual[static_cast<std::size_t>(a) * nc + b], actual[static_cast<std::size_t>(b) * nc + a], 1e-12 * largest);
-        }
-    }
 }
 
 TEST(ThreeVectorMultigrid, IsTheSameForOneTwoAndThreeThreads)

@@ -9,7 +9,7 @@
 #include "MotionSolverRegistry.hpp"
 #include "PointPatchDisplacement.hpp"
 #include "RbmEnergy.hpp"
-#include "RbmSolverCases.hpp"
+#include "TestCases.hpp"
 #include "RigidBodyMotionSolver.hpp"
 
 #include <gtest/gtest.h>

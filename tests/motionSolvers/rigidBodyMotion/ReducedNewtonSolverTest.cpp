@@ -3,7 +3,7 @@
 #include "CoupledNewtonSolver.hpp"
 
 #include "PetscTestEnvironment.hpp"
-#include "ReducedNewtonCases.hpp"
+#include "TestCases.hpp"
 
 #include <gtest/gtest.h>
 

@@ -6,20 +6,19 @@
 // Measurements for docs/motionSolver.md are printed by the tests (squares metrics tables) and
 // by DISABLED_ tests (run with --gtest_also_run_disabled_tests --gtest_filter='*Measure*').
 
-#include "PetscTestEnvironment.hpp"
-
 #include "CellNeighbourGraph.hpp"
 #include "CheckMeshQuality.hpp"
 #include "CoupledLinearizedSolver.hpp"
 #include "InputError.hpp"
 #include "MeshGenerators.hpp"
 #include "MotionSolverRegistry.hpp"
+#include "PetscTestEnvironment.hpp"
 #include "PointPatchDisplacement.hpp"
 #include "PolyMeshReader.hpp"
 #include "PseudoTwoDExtraction.hpp"
 #include "QualityReport.hpp"
 #include "RbmEnergy.hpp"
-#include "RbmSolverCases.hpp"
+#include "TestCases.hpp"
 #include "RigidBodyMotionSolver.hpp"
 #include "ShortestEdges.hpp"
 #include "Stiffening.hpp"
@@ -39,6 +38,8 @@
 #include <random>
 #include <string>
 
+using namespace rbm::test::solverCases;
+
 namespace {
 
 using namespace rbm;
@@ -46,164 +47,6 @@ using namespace rbm::motion;
 
 [[maybe_unused]] auto* const petscEnvironment =
     ::testing::AddGlobalTestEnvironment(new rbm::test::PetscTestEnvironment);
-
-double degrees(double angle) { return angle * std::numbers::pi / 180.0; }
-
-// ---------------------------------------------------------------------------------------
-// Meshes
-
-// One layer of cells extruded from 2D polygons (nodes in the xy-plane, polygons
-// counter-clockwise) between z0 and z1, with OpenFOAM's face order: internal faces sorted by
-// owner then neighbour, then the boundary faces patch by patch. `sidePatchOf(a, b)` names the
-// patch of the boundary edge a–b (one of `sidePatches`); the front (z0) and back (z1) faces go
-// to one patch "frontAndBack" or, with `separateFrontAndBack`, to "front" and "back", of type
-// `planeType`.
-PolyMesh extrudePolygons(const std::vector<Vector3>& nodes, const std::vector<std::vector<Label>>& polygons,
-                         const std::vector<Patch>& sidePatches,
-                         const std::function<std::string(const Vector3&, const Vector3&)>& sidePatchOf, double z0,
-                         double z1, const std::string& planeType = "empty", bool separateFrontAndBack = false)
-{
-    const Label n = static_cast<Label>(nodes.size());
-    PolyMesh mesh;
-    for (const Vector3& node : nodes) mesh.points.push_back({node.x, node.y, z0});
-    for (const Vector3& node : nodes) mesh.points.push_back({node.x, node.y, z1});
-
-    struct EdgeUse {
-        Label cell, a, b;
-    };
-    std::map<std::pair<Label, Label>, std::vector<EdgeUse>> edges;
-    for (Label c = 0; c < static_cast<Label>(polygons.size()); ++c) {
-        const auto& polygon = polygons[c];
-        for (std::size_t k = 0; k < polygon.size(); ++k) {
-            const Label a = polygon[k];
-            const Label b = polygon[(k + 1) % polygon.size()];
-            edges[{std::min(a, b), std::max(a, b)}].push_back({c, a, b});
-        }
-    }
-    struct Internal {
-        Label owner, neighbour, a, b;
-    };
-    std::vector<Internal> internal;
-    std::map<std::string, std::vector<EdgeUse>> boundary;
-    for (const auto& [key, uses] : edges) {
-        if (uses.size() == 2) {
-            const EdgeUse& first = uses[0].cell < uses[1].cell ? uses[0] : uses[1];
-            const EdgeUse& second = uses[0].cell < uses[1].cell ? uses[1] : uses[0];
-            internal.push_back({first.cell, second.cell, first.a, first.b});
-        } else {
-            boundary[sidePatchOf(nodes[uses[0].a], nodes[uses[0].b])].push_back(uses[0]);
-        }
-    }
-    std::sort(internal.begin(), internal.end(), [](const Internal& l, const Internal& r) {
-        return std::pair(l.owner, l.neighbour) < std::pair(r.owner, r.neighbour);
-    });
-    // Side face of edge a -> b (owner's counter-clockwise order): normal points out of the owner.
-    auto addSide = [&](Label a, Label b, Label owner) {
-        mesh.addFace(std::vector<Label>{a, b, b + n, a + n});
-        mesh.owner.push_back(owner);
-    };
-    for (const Internal& face : internal) {
-        addSide(face.a, face.b, face.owner);
-        mesh.neighbour.push_back(face.neighbour);
-    }
-    for (const Patch& side : sidePatches) {
-        Patch patch = side;
-        patch.startFace = mesh.faceCount();
-        for (const EdgeUse& use : boundary[side.name]) addSide(use.a, use.b, use.cell);
-        patch.faceCount = mesh.faceCount() - patch.startFace;
-        mesh.patches.push_back(patch);
-    }
-    auto addPlane = [&](bool front) {
-        for (Label c = 0; c < static_cast<Label>(polygons.size()); ++c) {
-            std::vector<Label> face;
-            if (front) {
-                for (auto it = polygons[c].rbegin(); it != polygons[c].rend(); ++it) face.push_back(*it);  // normal -z
-            } else {
-                for (Label p : polygons[c]) face.push_back(p + n);  // normal +z
-            }
-            mesh.addFace(face);
-            mesh.owner.push_back(c);
-        }
-    };
-    if (separateFrontAndBack) {
-        for (bool front : {true, false}) {
-            Patch patch{front ? "front" : "back", planeType, {}, mesh.faceCount(), 0, {}};
-            addPlane(front);
-            patch.faceCount = mesh.faceCount() - patch.startFace;
-            mesh.patches.push_back(patch);
-        }
-    } else {
-        Patch patch{"frontAndBack", planeType, {}, mesh.faceCount(), 0, {}};
-        addPlane(true);
-        addPlane(false);
-        patch.faceCount = mesh.faceCount() - patch.startFace;
-        mesh.patches.push_back(patch);
-    }
-    return mesh;
-}
-
-// The thesis' squares (§3.1): a square of cells × cells squares of side `spacing`, with a
-// square hole of holeCells × holeCells cells at its centre. Patches: "inner" (the hole's
-// rim), "outer", and the front and back planes. cells = 100, holeCells = 20, spacing = 10 is
-// the thesis' grid: 101 nodes per side, inner side 200, 9840 nodes, 9600 quadrilaterals.
-PolyMesh squaresMesh(int cells, int holeCells, double spacing, const std::string& planeType = "empty",
-                     bool separateFrontAndBack = false)
-{
-    const int first = (cells - holeCells) / 2;
-    const int last = first + holeCells;
-    auto inHoleInterior = [&](int i, int j) { return i > first && i < last && j > first && j < last; };
-    std::vector<Vector3> nodes;
-    std::vector<Label> index((cells + 1) * (cells + 1), -1);
-    for (int j = 0; j <= cells; ++j)
-        for (int i = 0; i <= cells; ++i) {
-            if (inHoleInterior(i, j)) continue;
-            index[i + (cells + 1) * j] = static_cast<Label>(nodes.size());
-            nodes.push_back({spacing * i, spacing * j, 0.0});
-        }
-    std::vector<std::vector<Label>> polygons;
-    for (int j = 0; j < cells; ++j)
-        for (int i = 0; i < cells; ++i) {
-            if (i >= first && i < last && j >= first && j < last) continue;
-            auto at = [&](int a, int b) { return index[a + (cells + 1) * b]; };
-            polygons.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)});
-        }
-    const double size = spacing * cells;
-    auto side = [size](const Vector3& a, const Vector3& b) {
-        const Vector3 m = 0.5 * (a + b);
-        const bool outer = m.x == 0.0 || m.y == 0.0 || m.x == size || m.y == size;
-        return std::string(outer ? "outer" : "inner");
-    };
-    return extrudePolygons(nodes, polygons, {Patch{"inner", "wall", {}, 0, 0, {}}, Patch{"outer", "patch", {}, 0, 0, {}}}, side, 0.0, spacing,
-                           planeType, separateFrontAndBack);
-}
-
-// ---------------------------------------------------------------------------------------
-// Motions and helpers
-
-// Rigid motion x -> centre + R (x − centre) + translation, R by `angle` about `axis`.
-struct RigidMotion {
-    Vector3 axis{0.0, 0.0, 1.0};
-    double angle = 0.0;
-    Vector3 centre;
-    Vector3 translation;
-
-    Vector3 apply(const Vector3& x) const
-    {
-        const Matrix3 rotation = rotationFromVector(angle / norm(axis) * axis);
-        return centre + rotation * (x - centre) + translation;
-    }
-    Vector3 displacement(const Vector3& x) const { return apply(x) - x; }
-};
-
-std::vector<Vector3> patchDisplacement(const MotionSolver& solver, const std::string& patch,
-                                       const std::function<Vector3(const Vector3&)>& displacementOf)
-{
-    const PolyMesh& mesh = solver.mesh();
-    const std::vector<Label> points = patchMeshPoints(mesh, mesh.findPatch(patch));
-    std::vector<Vector3> values;
-    for (Label p : points) values.push_back(displacementOf(solver.points0()[p]));
-    return values;
-}
 
 void moveAllPatches(MotionSolver& solver, const RigidMotion& motion)
 {
@@ -221,8 +64,6 @@ io::Dictionary parse(const std::string& text, const std::string& file = "constan
 
 using rbm::test::makeSolver;
 
-const RigidBodyMotionSolver& asRbm(const MotionSolver& solver) { return dynamic_cast<const RigidBodyMotionSolver&>(solver); }
-
 // The mesh point nearest to `x` (the first of equally near ones).
 Label nearestPoint(const PolyMesh& mesh, const Vector3& x)
 {
@@ -238,19 +79,6 @@ double largestDistance(std::span<const Vector3> a, std::span<const Vector3> b)
     for (std::size_t k = 0; k < a.size(); ++k) largest = std::max(largest, norm(a[k] - b[k]));
     return largest;
 }
-
-std::string errorOf(const std::function<void()>& action)
-{
-    try {
-        action();
-    } catch (const InputError& error) {
-        return error.what();
-    }
-    return "no InputError";
-}
-
-// ---------------------------------------------------------------------------------------
-// Selection and options
 
 TEST(RigidBodyMotionSolverSelection, IsSelectedByNameWithItsCoefficients)
 {
@@ -392,9 +220,6 @@ TEST(RigidBodyMotionSolverSelection, PetscOptionsFromTheDictionaryReachTheLinear
     EXPECT_EQ(commandLine.reason, "CONVERGED_ITS");
     EXPECT_NEAR(iterative.energy, direct.energy, 1e-8 * direct.energy);
 }
-
-// ---------------------------------------------------------------------------------------
-// Boundary conditions and node classes
 
 TEST(RigidBodyMotionSolverBoundaries, PrescribedBeatsSlidingBeatsFree)
 {
@@ -600,9 +425,6 @@ TEST(RigidBodyMotionSolverBoundaries, DictionaryConditionsAreEvaluatedAtTheGiven
         EXPECT_LT(norm(points[p] - (mesh.points[p] + Vector3{0.25, 0.5, 0.0})), 5e-6) << p;
 }
 
-// ---------------------------------------------------------------------------------------
-// Time stepping driven by a host program
-
 // The inner square of small squares turns back and forth; at every step the patch follows
 // exactly what the host set, and when the angle returns to zero the mesh is the initial one.
 TEST(RigidBodyMotionSolverTimeSteps, HostDrivenPitchingReturnsToTheInitialMesh2D)
@@ -667,10 +489,6 @@ TEST(RigidBodyMotionSolverTimeSteps, HostDrivenWavingWallReturnsToTheInitialMesh
     }
 }
 
-// ---------------------------------------------------------------------------------------
-// Rigid motions: the RBM energy is zero for a rigid motion of the whole mesh, so the
-// nonlinear variants must reproduce it.
-
 TEST(RigidBodyMotionSolverRigidMotion, MovesEveryPointRigidlyIn2D)
 {
     const PolyMesh mesh = squaresMesh(12, 4, 1.0);
@@ -711,10 +529,6 @@ TEST(RigidBodyMotionSolverRigidMotion, MovesEveryPointRigidlyIn3D)
         EXPECT_LT(error, (coefficients.empty() ? 5e-6 : 1e-9) * 1.0) << coefficients;
     }
 }
-
-// ---------------------------------------------------------------------------------------
-// The pseudo-3D path against a real 3D solve of the same one-layer mesh with the front and
-// back planes as symmetry planes (sliding nodes).
 
 struct TwoAndThreeD {
     double largestDifference = 0.0;  // in-plane, over the front-plane points
@@ -850,12 +664,6 @@ TEST(RigidBodyMotionSolverTwoD, WedgeAxisPointsStayOnTheAxisAndSlideAlongIt)
     EXPECT_LT(largestOffAxis, 1e-12 * 8.0);
     EXPECT_GT(largestAlongAxis, 0.05);  // they followed the wall along the axis
 }
-
-// ---------------------------------------------------------------------------------------
-// The thesis' squares (§3.1): 101 × 101 nodes, inner square of side 200 turned by 10°
-// counter-clockwise about its centre (§3.1.1) or translated by (50, 25) (§3.1.2), outer
-// square fixed, uniform weights as in the thesis. Every variant runs; the metrics tables of
-// docs/motionSolver.md are printed here.
 
 struct SquaresRun {
     std::string label;
@@ -1048,13 +856,7 @@ TEST(RigidBodyMotionSolverSquares, DISABLED_MeasureNonOrthogonalityWithVertexAve
     }
 }
 
-// ---------------------------------------------------------------------------------------
-// Weighting on a boundary-layer mesh (docs/method.md §1): the NACA4415 fixture with a hex
-// boundary layer (checkMesh aspect ratio ~780); the airfoil turns about its trailing edge
-// (1, 0, 0), the far field is fixed. One step of coupled nonlinear RBM.
-
 using rbm::test::airfoilMesh;
-
 using rbm::test::shortestEdgeAtEachPoint;
 
 struct AirfoilRun {
@@ -1328,9 +1130,6 @@ TEST(RigidBodyMotionSolverWeighting, DISABLED_MeasureLargestSingleStepAngle)
         }
     }
 }
-
-// ---------------------------------------------------------------------------------------
-// Automatic sub-steps (thesis §2.6) with splitting of sub-steps that invert cells.
 
 TEST(RigidBodyMotionSolverSubSteps, DISABLED_MeasureSingleStepFailures)
 {
@@ -1696,240 +1495,6 @@ TEST(RigidBodyMotionSolverUntangling, DISABLED_MeasureRescuedCases)
             print("airfoil linearized " + std::to_string(angle) + " " + stage, *solver, run.report);
         }
     }
-}
-
-// ---------------------------------------------------------------------------------------
-// Stiffening
-
-TEST(Stiffening, NearestSurfaceMatchesABruteForceSearch)
-{
-    // The faces of the x = 0 and z = 3 sides of a box, and random points around it.
-    const PolyMesh mesh = makeHexBox(4, 3, 3, {0, 0, 0}, {4, 3, 3});
-    const std::vector<Label> patches{mesh.findPatch("xMin"), mesh.findPatch("zMax")};
-    const NearestSurface surface = patchSurface(mesh, mesh.points, patches);
-    EXPECT_EQ(surface.size(), 4u * (3 * 3 + 4 * 3));  // 4 triangles per quad face
-    std::mt19937 random(7);
-    std::uniform_real_distribution<double> coordinate(-2.0, 6.0);
-    for (int k = 0; k < 200; ++k) {
-        const Vector3 p{coordinate(random), coordinate(random), coordinate(random)};
-        // Distance to the rectangle x = 0, 0 ≤ y, z ≤ 3, and to z = 3, 0 ≤ x ≤ 4, 0 ≤ y ≤ 3.
-        auto clampTo = [](double v, double lo, double hi) { return std::clamp(v, lo, hi); };
-        const double toXMin = norm(p - Vector3{0.0, clampTo(p.y, 0, 3), clampTo(p.z, 0, 3)});
-        const double toZMax = norm(p - Vector3{clampTo(p.x, 0, 4), clampTo(p.y, 0, 3), 3.0});
-        EXPECT_NEAR(surface.distance(p), std::min(toXMin, toZMax), 1e-12) << p;
-    }
-}
-
-TEST(Stiffening, NearestSurfaceOfAClosedBoundaryMatchesABruteForceSearchToTheLastBit)
-{
-    // All six sides of a perturbed box: the hierarchy splits them by the way they face first
-    // (the boxes of position splits would contain the inside). Points inside and around it,
-    // with and without a hint: every distance is the minimum over all primitives, bit for bit.
-    PolyMesh mesh = makeHexBox(5, 4, 3, {0, 0, 0}, {5, 4, 3});
-    std::mt19937 random(17);
-    std::uniform_real_distribution<double> jitter(-0.15, 0.15);
-    for (Vector3& p : mesh.points) p += Vector3{jitter(random), jitter(random), jitter(random)};
-    std::vector<Label> patches;
-    for (const char* name : {"xMin", "xMax", "yMin", "yMax", "zMin", "zMax"}) patches.push_back(mesh.findPatch(name));
-    const NearestSurface surface = patchSurface(mesh, mesh.points, patches);
-    ASSERT_EQ(surface.size(), 4u * 2u * (5 * 4 + 5 * 3 + 4 * 3));
-    std::uniform_real_distribution<double> coordinate(-1.0, 6.0);
-    int hint = -1;
-    for (int k = 0; k < 400; ++k) {
-        const Vector3 p{coordinate(random), coordinate(random) * 0.8, coordinate(random) * 0.6};
-        double best = std::numeric_limits<double>::infinity();
-        for (int q = 0; q < static_cast<int>(surface.size()); ++q) best = std::min(best, surface.squaredDistanceTo(q, p));
-        EXPECT_EQ(surface.distance(p), std::sqrt(best)) << p;
-        EXPECT_EQ(surface.distance(p, hint), std::sqrt(best)) << p;
-    }
-}
-
-TEST(Stiffening, PrimitivesWithinARadiusAreThoseABruteForceSearchFinds)
-{
-    const PolyMesh mesh = makeHexBox(4, 3, 3, {0, 0, 0}, {4, 3, 3});
-    const std::vector<Label> patches{mesh.findPatch("xMin"), mesh.findPatch("zMax")};
-    const NearestSurface surface = patchSurface(mesh, mesh.points, patches);
-    std::mt19937 random(5);
-    std::uniform_real_distribution<double> coordinate(-2.0, 6.0);
-    std::uniform_real_distribution<double> radius(0.0, 3.0);
-    int someButNotAll = 0;
-    for (int k = 0; k < 200; ++k) {
-        const Vector3 p{coordinate(random), coordinate(random), coordinate(random)};
-        const double r = radius(random);
-        std::vector<int> expected;
-        for (int q = 0; q < static_cast<int>(surface.size()); ++q)
-            if (surface.squaredDistanceTo(q, p) <= r * r) expected.push_back(q);
-        std::vector<int> found;
-        ASSERT_TRUE(surface.primitivesWithin(p, r, found, surface.size()));
-        std::sort(found.begin(), found.end());
-        EXPECT_EQ(found, expected) << p << " radius " << r;
-        someButNotAll += !expected.empty() && expected.size() < surface.size();
-        // More than the limit: false.
-        if (expected.size() > 1) {
-            std::vector<int> partial;
-            EXPECT_FALSE(surface.primitivesWithin(p, r, partial, expected.size() - 1));
-            EXPECT_LE(partial.size(), expected.size() - 1);
-        }
-    }
-    EXPECT_GT(someButNotAll, 50);
-}
-
-TEST(Stiffening, NearestSurfaceWithAHintGivesTheSameDistances)
-{
-    // A hint (the last query's nearest primitive, a stale one, none, or out of range) only
-    // bounds the search: the distances equal the plain search's to the last bit, and each
-    // equals the brute-force distance to the two box sides.
-    const PolyMesh mesh = makeHexBox(4, 3, 3, {0, 0, 0}, {4, 3, 3});
-    const std::vector<Label> patches{mesh.findPatch("xMin"), mesh.findPatch("zMax")};
-    const NearestSurface surface = patchSurface(mesh, mesh.points, patches);
-    std::mt19937 random(11);
-    std::uniform_real_distribution<double> coordinate(-2.0, 6.0);
-    int hint = -1;
-    for (int k = 0; k < 300; ++k) {
-        const Vector3 p{coordinate(random), coordinate(random), coordinate(random)};
-        if (k % 50 == 7) hint = 1000000;   // out of range: ignored
-        if (k % 50 == 9) hint = 0;         // some primitive, likely far from p
-        const double plain = surface.distance(p);
-        const double hinted = surface.distance(p, hint);
-        EXPECT_EQ(hinted, plain) << p;
-        ASSERT_GE(hint, 0);
-        ASSERT_LT(hint, static_cast<int>(surface.size()));
-        auto clampTo = [](double v, double lo, double hi) { return std::clamp(v, lo, hi); };
-        const double toXMin = norm(p - Vector3{0.0, clampTo(p.y, 0, 3), clampTo(p.z, 0, 3)});
-        const double toZMax = norm(p - Vector3{clampTo(p.x, 0, 4), clampTo(p.y, 0, 3), 3.0});
-        EXPECT_NEAR(hinted, std::min(toXMin, toZMax), 1e-12) << p;
-        // The hint is a nearest primitive: searching again from it gives the same distance.
-        int again = hint;
-        EXPECT_EQ(surface.distance(p, again), plain);
-        EXPECT_EQ(again, hint);
-    }
-}
-
-namespace {
-
-// f_ij of every directed edge from the nearest of all primitives, one by one (no hierarchy,
-// no candidates): what stiffeningFactors must give to the last bit.
-std::vector<double> bruteForceStiffeningFactors(const CellNeighbourGraph& graph, std::span<const Vector3> points,
-                                                int dimension, const NearestSurface& surface, double exponent)
-{
-    auto position = [&](Label node) {
-        Vector3 p = points[node];
-        if (dimension == 2) p.z = 0.0;
-        return p;
-    };
-    double shortest = std::numeric_limits<double>::infinity();
-    for (Label i = 0; i < graph.nodeCount(); ++i)
-        for (Label e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e)
-            shortest = std::min(shortest, norm(position(graph.neighbours[e]) - position(i)));
-    std::vector<double> factors(graph.neighbours.size());
-    for (Label i = 0; i < graph.nodeCount(); ++i) {
-        for (Label e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e) {
-            const Label j = graph.neighbours[e];
-            const Vector3 midpoint = 0.5 * (position(std::min(i, j)) + position(std::max(i, j)));
-            double best = std::numeric_limits<double>::infinity();
-            for (int k = 0; k < static_cast<int>(surface.size()); ++k) best = std::min(best, surface.squaredDistanceTo(k, midpoint));
-            const double ratio = shortest / std::max(std::sqrt(best), shortest);
-            factors[e] = exponent == 1.0 ? ratio : exponent == 2.0 ? ratio * ratio : std::pow(ratio, exponent);
-        }
-    }
-    return factors;
-}
-
-} // namespace
-
-TEST(Stiffening, FactorsEqualABruteForceSearchOnTheAirfoilAndAPerturbedBox)
-{
-    // stiffeningFactors searches the candidates of all of a node's edges at once (and the
-    // hierarchy edge by edge where there are many): every factor equals the one from the
-    // nearest of all primitives to the last bit. The airfoil has both kinds of node (cells
-    // 1e-6 thin at the wall, 20 chords to the far field); the box has triangles (3D faces).
-    {
-        const PolyMesh& mesh = airfoilMesh();
-        const PseudoTwoDMesh flat = extractPseudoTwoD(mesh);
-        const CellNeighbourGraph graph = buildCellNeighbourGraph(flat.planar);
-        std::vector<Label> patches;
-        for (Label p = 0; p < static_cast<Label>(flat.planar.patches.size()); ++p) patches.push_back(p);
-        const NearestSurface surface = patchSurface(flat.planar, patches);
-        ASSERT_GT(surface.size(), 100u);
-        for (const double exponent : {0.8, 2.0}) {
-            const std::vector<double> factors = stiffeningFactors(graph, flat.planar.points, 2, surface, exponent);
-            const std::vector<double> expected = bruteForceStiffeningFactors(graph, flat.planar.points, 2, surface, exponent);
-            ASSERT_EQ(factors.size(), expected.size());
-            std::size_t different = 0;
-            for (std::size_t e = 0; e < factors.size(); ++e) different += factors[e] != expected[e];
-            EXPECT_EQ(different, 0u) << "exponent " << exponent;
-            EXPECT_LT(*std::min_element(factors.begin(), factors.end()), 1e-2);   // far edges count less
-            EXPECT_EQ(*std::max_element(factors.begin(), factors.end()), 1.0);
-        }
-    }
-    {
-        PolyMesh mesh = makeHexBox(6, 5, 4, {0, 0, 0}, {6, 5, 4});
-        std::mt19937 random(3);
-        std::uniform_real_distribution<double> jitter(-0.2, 0.2);
-        for (Vector3& p : mesh.points) p += Vector3{jitter(random), jitter(random), jitter(random)};
-        const CellNeighbourGraph graph = buildCellNeighbourGraph(mesh);
-        const std::vector<Label> patches{mesh.findPatch("xMin"), mesh.findPatch("zMax")};
-        const NearestSurface surface = patchSurface(mesh, mesh.points, patches);
-        const std::vector<double> factors = stiffeningFactors(graph, mesh.points, 3, surface, 1.0);
-        const std::vector<double> expected = bruteForceStiffeningFactors(graph, mesh.points, 3, surface, 1.0);
-        ASSERT_EQ(factors.size(), expected.size());
-        for (std::size_t e = 0; e < factors.size(); ++e) ASSERT_EQ(factors[e], expected[e]) << "edge " << e;
-    }
-}
-
-TEST(Stiffening, FactorsFallWithTheDistanceToThePatch)
-{
-    // 2D rows of unit squares above the bottom patch: a horizontal edge at height y has its
-    // midpoint at distance y (clipped at the shortest edge, 1): f = (1 / max(y, 1))^k.
-    const PolyMesh mesh = makeExtruded2D(4, 6, {0, 0, 0}, {4, 6, 1});
-    const PseudoTwoDMesh flat = extractPseudoTwoD(mesh);
-    const CellNeighbourGraph graph = buildCellNeighbourGraph(flat.planar);
-    std::vector<Label> bottom;
-    for (Label p = 0; p < static_cast<Label>(flat.planar.patches.size()); ++p)
-        if (flat.planar.patches[p].name == "bottom") bottom.push_back(p);
-    ASSERT_EQ(bottom.size(), 1u);
-    const NearestSurface surface = patchSurface(flat.planar, bottom);
-    for (const int exponent : {1, 2}) {
-        const std::vector<double> factors = stiffeningFactors(graph, flat.planar.points, 2, surface, exponent);
-        int checked = 0;
-        for (Label i = 0; i < graph.nodeCount(); ++i) {
-            for (Label e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e) {
-                const Vector3& a = flat.planar.points[i];
-                const Vector3& b = flat.planar.points[graph.neighbours[e]];
-                if (a.y != b.y || a.x < 0.5 || a.x > 3.5 || b.x < 0.5 || b.x > 3.5) continue;  // horizontal, away from the sides
-                const double expected = std::pow(1.0 / std::max(a.y, 1.0), exponent);
-                EXPECT_NEAR(factors[e], expected, 1e-14) << "y " << a.y;
-                ++checked;
-            }
-        }
-        EXPECT_GT(checked, 20);
-    }
-}
-
-TEST(Stiffening, StiffenedSolveKeepsTheCellsNextToThePatchMoreRigid)
-{
-    const PolyMesh mesh = squaresMesh(20, 4, 10.0);
-    const RigidMotion turn{{0, 0, 1}, degrees(20.0), {100.0, 100.0, 0.0}, {}};
-    auto stiffened = makeSolver(mesh, "weighting uniform; stiffening quadratic inverseDistance (inner);");
-    EXPECT_NE(errorOf([&] { makeSolver(mesh, "stiffening inverseDistance (inner wing);"); })
-                  .find("stiffening: unknown patch wing. Valid patches are: inner outer frontAndBack"),
-              std::string::npos);
-    auto plain = makeSolver(mesh, "weighting uniform; stiffening none;");
-    double innerCellShape[2] = {0.0, 0.0};
-    int k = 0;
-    for (MotionSolver* solver : {plain.get(), stiffened.get()}) {
-        solver->setPatchDisplacement("inner",
-                                     patchDisplacement(*solver, "inner", [&](const Vector3& x) { return turn.displacement(x); }));
-        const MotionSolveReport report = solver->solve();
-        ASSERT_TRUE(report.converged) << report.reason;
-        QualityEvaluator evaluator(mesh);
-        innerCellShape[k++] = evaluator.evaluate(solver->curPoints()).thesis.quadrilateralShape.min;
-    }
-    EXPECT_FALSE(asRbm(*stiffened).stiffeningFactors().empty());
-    // One array of factors: the problem solved shares the solver's (210 MB each at 10⁶ hexahedra).
-    ASSERT_NE(asRbm(*stiffened).problem(), nullptr);
-    EXPECT_EQ(asRbm(*stiffened).problem()->edgeWeightFactors().data(), asRbm(*stiffened).stiffeningFactors().data());
-    EXPECT_GT(innerCellShape[1], innerCellShape[0]);
 }
 
 } // namespace

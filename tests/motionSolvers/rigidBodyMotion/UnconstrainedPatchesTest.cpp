@@ -5,7 +5,7 @@
 #include "InputError.hpp"
 #include "MeshGenerators.hpp"
 #include "MotionSolverRegistry.hpp"
-#include "RbmSolverCases.hpp"
+#include "TestCases.hpp"
 #include "RigidBodyMotionSolver.hpp"
 
 #include <gtest/gtest.h>

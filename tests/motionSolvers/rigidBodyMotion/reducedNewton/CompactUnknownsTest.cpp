@@ -1,6 +1,6 @@
 #include "CompactUnknowns.hpp"
 
-#include "GridCases.hpp"
+#include "TestCases.hpp"
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 
 #include "OrderedSums.hpp"
 #include "PetscTestEnvironment.hpp"
-#include "ReducedNewtonCases.hpp"
+#include "TestCases.hpp"
 
 #include <gtest/gtest.h>
 

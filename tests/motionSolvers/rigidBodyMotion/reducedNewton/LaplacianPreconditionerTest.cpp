@@ -2,10 +2,9 @@
 
 #include "CoupledNewtonSolver.hpp"
 
-#include "GridCases.hpp"
+#include "TestCases.hpp"
 #include "OrderedSums.hpp"
 #include "PetscTestEnvironment.hpp"
-#include "ReducedNewtonCases.hpp"
 #include "ThreadCount.hpp"
 
 #include <gtest/gtest.h>

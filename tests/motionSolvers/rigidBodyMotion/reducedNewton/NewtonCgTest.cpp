@@ -1,7 +1,7 @@
 #include "NewtonCg.hpp"
 
 #include "PetscTestEnvironment.hpp"
-#include "ReducedNewtonCases.hpp"
+#include "TestCases.hpp"
 
 #include <gtest/gtest.h>
 

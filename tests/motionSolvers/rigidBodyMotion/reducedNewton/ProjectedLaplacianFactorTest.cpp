@@ -2,7 +2,7 @@
 // its solve is the exact inverse of P (K ⊗ I) P on the admissible subspace.
 #include "ProjectedLaplacianFactor.hpp"
 
-#include "GridCases.hpp"
+#include "TestCases.hpp"
 #include "OrderedSums.hpp"
 #include "ReducedLinearizedOperator.hpp"
 

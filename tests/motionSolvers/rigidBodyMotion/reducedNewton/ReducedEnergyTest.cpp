@@ -1,6 +1,6 @@
 #include "ReducedEnergy.hpp"
 
-#include "GridCases.hpp"
+#include "TestCases.hpp"
 #include "LocalGlobalSolver.hpp"
 #include "PetscTestEnvironment.hpp"
 #include "VectorInstructions.hpp"

@@ -1,7 +1,7 @@
 #include "WarmStart.hpp"
 
 #include "PetscTestEnvironment.hpp"
-#include "ReducedNewtonCases.hpp"
+#include "TestCases.hpp"
 
 #include <gtest/gtest.h>
 

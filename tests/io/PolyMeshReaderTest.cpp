@@ -1,16 +1,14 @@
-// Reading and writing constant/polyMesh in every format OpenFOAM writes.
-//
-// The fixtures in tests/data/formats/ were written by OpenFOAM v1912 (tests/data/makeFixtures.sh):
-// one two-block mesh, 10 x 5 x 4 = 200 cells, graded 3:1 in y, in six on-disk variants. The
-// expected numbers below are derived from its blockMeshDict, not read from the files.
+// Tests of the polyMesh reader (io/PolyMeshReader): the committed fixtures in every format
+// variant, and every malformed file named with its line and what was expected.
 
-#include "ScratchFiles.hpp"
 #include "CompressedFile.hpp"
 #include "FoamDictionary.hpp"
 #include "FoamListIO.hpp"
 #include "InputError.hpp"
 #include "PolyMeshReader.hpp"
 #include "PolyMeshWriter.hpp"
+#include "ScratchFiles.hpp"
+#include "TestCases.hpp"
 
 #include <gtest/gtest.h>
 
@@ -26,28 +24,14 @@
 #include <string>
 #include <unistd.h>
 
-namespace fs = std::filesystem;
-using rbm::Label;
-using rbm::PolyMesh;
-using rbm::Vector3;
-using rbm::io::FoamWriteOptions;
+using namespace rbm::test::polyMeshIOCases;
 
 namespace {
-
-using rbm::test::TempDir;
-using rbm::test::readText;
-using rbm::test::writeText;
-
-const fs::path formatsDir = fs::path(RBM_TEST_DATA_DIR) / "formats";
-
-fs::path polyMeshOf(const std::string& variant)
-{
-    return formatsDir / variant / "constant" / "polyMesh";
-}
 
 // The mesh of tests/data/makeFixtures.sh: blocks of 6 and 4 cells in x (0..0.6..1), 5 in y
 // (0..0.5, last/first cell size 3), 4 in z (0..0.2).
 constexpr int nx = 10, ny = 5, nz = 4;
+
 constexpr int pointCount = (nx + 1) * (ny + 1) * (nz + 1);                                    // 330
 constexpr int cellCount = nx * ny * nz;                                                      // 200
 constexpr int internalFaceCount = (nx - 1) * ny * nz + nx * (ny - 1) * nz + nx * ny * (nz - 1);  // 490
@@ -59,10 +43,6 @@ double gradedY(int j)
     const double r = std::pow(3.0, 0.25);
     return 0.5 * (std::pow(r, j) - 1.0) / (std::pow(r, ny) - 1.0);
 }
-
-// A fresh temporary folder per test.
-
-
 
 // Copies a fixture's polyMesh into `dir`/polyMesh and returns that folder.
 fs::path copyPolyMesh(const std::string& variant, const fs::path& dir)
@@ -83,71 +63,7 @@ void replaceInFile(const fs::path& path, const std::string& from, const std::str
     writeText(path, text);
 }
 
-// Runs `read` and checks that it throws an InputError whose message contains every fragment.
-void expectInputError(const std::function<void()>& read, const std::vector<std::string>& fragments, int line = -1)
-{
-    try {
-        read();
-        ADD_FAILURE() << "expected an rbm::InputError";
-    } catch (const rbm::InputError& e) {
-        for (const std::string& fragment : fragments)
-            EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << "'" << fragment << "' not in: " << e.what();
-        if (line >= 0) {
-            EXPECT_EQ(e.line(), line) << e.what();
-        }
-    }
-}
-
-void expectSameTopology(const PolyMesh& a, const PolyMesh& b)
-{
-    EXPECT_EQ(a.faceOffsets, b.faceOffsets);
-    EXPECT_EQ(a.facePoints, b.facePoints);
-    EXPECT_EQ(a.owner, b.owner);
-    EXPECT_EQ(a.neighbour, b.neighbour);
-    ASSERT_EQ(a.patches.size(), b.patches.size());
-    for (std::size_t p = 0; p < a.patches.size(); ++p) {
-        EXPECT_EQ(a.patches[p].name, b.patches[p].name);
-        EXPECT_EQ(a.patches[p].type, b.patches[p].type);
-        EXPECT_EQ(a.patches[p].inGroups, b.patches[p].inGroups);
-        EXPECT_EQ(a.patches[p].startFace, b.patches[p].startFace);
-        EXPECT_EQ(a.patches[p].faceCount, b.patches[p].faceCount);
-        EXPECT_EQ(a.patches[p].otherEntries, b.patches[p].otherEntries);
-    }
-    for (auto zones : {&PolyMesh::pointZones, &PolyMesh::faceZones, &PolyMesh::cellZones}) {
-        ASSERT_EQ((a.*zones).size(), (b.*zones).size());
-        for (std::size_t z = 0; z < (a.*zones).size(); ++z) {
-            EXPECT_EQ((a.*zones)[z].name, (b.*zones)[z].name);
-            EXPECT_EQ((a.*zones)[z].labels, (b.*zones)[z].labels);
-            EXPECT_EQ((a.*zones)[z].flipMap, (b.*zones)[z].flipMap);
-        }
-    }
-}
-
-// Points equal to `digits` significant digits: |a - b| <= 0.5e-(digits-1) |b| per component.
-void expectPointsEqualToDigits(const std::vector<Vector3>& a, const std::vector<Vector3>& b, int digits)
-{
-    ASSERT_EQ(a.size(), b.size());
-    const double relative = 0.5 * std::pow(10.0, 1 - digits) * (1 + 1e-9);
-    for (std::size_t i = 0; i < a.size(); ++i) {
-        for (int c = 0; c < 3; ++c)
-            ASSERT_LE(std::abs(a[i][c] - b[i][c]), relative * std::abs(b[i][c])) << "point " << i << " component " << c;
-    }
-}
-
-bool bitIdentical(const std::vector<Vector3>& a, const std::vector<Vector3>& b)
-{
-    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Vector3)) == 0;
-}
-
-const PolyMesh& binaryFixture()
-{
-    static const PolyMesh mesh = rbm::io::readPolyMesh(polyMeshOf("binary"));
-    return mesh;
-}
-
 } // namespace
-
-// ---- Every variant OpenFOAM wrote holds the mesh of the blockMeshDict ----------------------
 
 class PolyMeshFixtureVariant : public ::testing::TestWithParam<std::string> {};
 
@@ -341,187 +257,6 @@ TEST(PolyMeshReader, ReadsTheMovedPointsOfATimeFolder)
     EXPECT_TRUE(bitIdentical(rbm::io::readPolyMeshPoints(dir.path() / "0.5"), binaryFixture().points));
     expectInputError([&] { rbm::io::readPolyMeshPoints(dir.path() / "0.7"); }, {"0.7", "not found", "expected a time folder"});
 }
-
-// ---- Writing ---------------------------------------------------------------------------------
-
-struct WriteCase {
-    bool binary;
-    bool compressed;
-};
-
-class PolyMeshRoundTrip : public ::testing::TestWithParam<WriteCase> {};
-
-TEST_P(PolyMeshRoundTrip, ReproducesTheMesh)
-{
-    const auto [binary, compressed] = GetParam();
-    TempDir dir(std::string("roundTrip") + (binary ? "Binary" : "Ascii") + (compressed ? "Gz" : ""));
-    // Translate the points by an amount that is not a short decimal, so ascii rounding shows.
-    PolyMesh mesh = binaryFixture();
-    for (Vector3& x : mesh.points) x += Vector3{1.0 / 3.0, -2.0 / 7.0, 0.1};
-    const fs::path polyMeshDir = dir.path() / "constant" / "polyMesh";
-    rbm::io::writePolyMesh(polyMeshDir, mesh, FoamWriteOptions{.binary = binary, .precision = 6, .compressed = compressed});
-
-    for (const char* name : {"points", "faces", "owner", "neighbour", "cellZones", "faceZones", "pointZones"})
-        EXPECT_TRUE(fs::exists(polyMeshDir / (std::string(name) + (compressed ? ".gz" : "")))) << name;
-    EXPECT_TRUE(fs::exists(polyMeshDir / "boundary"));   // never compressed, as in OpenFOAM
-
-    const PolyMesh back = rbm::io::readPolyMesh(polyMeshDir);
-    expectSameTopology(back, mesh);
-    if (binary) {
-        EXPECT_TRUE(bitIdentical(back.points, mesh.points));
-    } else {
-        // writePrecision 6, raised to 10 digits for points as OpenFOAM's mesh tools do.
-        expectPointsEqualToDigits(back.points, mesh.points, 10);
-        EXPECT_FALSE(bitIdentical(back.points, mesh.points));
-    }
-}
-
-INSTANTIATE_TEST_SUITE_P(AllFormats, PolyMeshRoundTrip,
-                         ::testing::Values(WriteCase{false, false}, WriteCase{true, false}, WriteCase{false, true},
-                                           WriteCase{true, true}),
-                         [](const auto& info) {
-                             return std::string(info.param.binary ? "Binary" : "Ascii") + (info.param.compressed ? "Gzip" : "");
-                         });
-
-TEST(PolyMeshWriter, AsciiPointsHonourThePrecisionWhenNoMinimumIsSet)
-{
-    TempDir dir("precision");
-    std::vector<Vector3> points = binaryFixture().points;
-    for (Vector3& x : points) x += Vector3{1.0 / 3.0, 0.0, 0.0};
-    for (int digits : {3, 6, 12, 17}) {
-        SCOPED_TRACE(digits);
-        const fs::path file = rbm::io::writePointsFile(dir.path() / "points", points, "constant/polyMesh",
-                                                       FoamWriteOptions{.precision = digits, .minimumPointPrecision = 0});
-        const std::vector<Vector3> back = rbm::io::readPolyMeshPoints(file);
-        expectPointsEqualToDigits(back, points, digits);
-        // One digit fewer than written would not do (else the precision was ignored).
-        const double coarser = 0.5 * std::pow(10.0, 2 - digits);
-        bool anyNeedsAllDigits = false;
-        for (std::size_t i = 0; i < points.size(); ++i)
-            anyNeedsAllDigits |= std::abs(back[i].x - points[i].x) > 0.05 * coarser * std::abs(points[i].x);
-        if (digits < 17) {
-            EXPECT_TRUE(anyNeedsAllDigits);
-        }
-        if (digits == 17) {
-            EXPECT_TRUE(bitIdentical(back, points));   // 17 digits round-trip a double
-        }
-    }
-    // "1/3 + 0" written with 6 digits is the text 0.333333.
-    rbm::io::writePointsFile(dir.path() / "points", std::vector<Vector3>{{1.0 / 3.0, 0.0, -2.5e-7}}, "constant/polyMesh",
-                             FoamWriteOptions{.precision = 6, .minimumPointPrecision = 0});
-    EXPECT_NE(readText(dir.path() / "points").find("\n(0.333333 0 -2.5e-07)\n"), std::string::npos);
-}
-
-TEST(PolyMeshWriter, WritesTheHeaderOpenFoamWrites)
-{
-    TempDir dir("header");
-    rbm::io::writePolyMeshPoints(dir.path(), "0.005", binaryFixture().points, FoamWriteOptions{.binary = true});
-    const std::string text = readText(dir.path() / "0.005" / "polyMesh" / "points");
-    EXPECT_EQ(text.rfind("/*--------------------------------*- C++ -*----------------------------------*\\\n", 0), 0u);
-    for (const char* line : {"    version     2.0;\n", "    format      binary;\n", "    class       vectorField;\n",
-                             "    arch        \"LSB;label=32;scalar=64\";\n", "    location    \"0.005/polyMesh\";\n",
-                             "    object      points;\n", "\n330\n("}) {
-        EXPECT_NE(text.find(line), std::string::npos) << line;
-    }
-    // Size: header + 330 points of 24 bytes.
-    EXPECT_GT(text.size(), 330u * 24u);
-
-    const fs::path polyMeshDir = dir.path() / "constant" / "polyMesh";
-    rbm::io::writePolyMesh(polyMeshDir, binaryFixture(), FoamWriteOptions{});
-    const std::string owner = readText(polyMeshDir / "owner");
-    EXPECT_NE(owner.find("note        \"nPoints:330  nCells:200  nFaces:710  nInternalFaces:490\";"), std::string::npos);
-    EXPECT_NE(owner.find("location    \"constant/polyMesh\";"), std::string::npos);
-    EXPECT_NE(readText(polyMeshDir / "faces").find("class       faceList;"), std::string::npos);
-    const std::string boundary = readText(polyMeshDir / "boundary");
-    EXPECT_NE(boundary.find("        inGroups        2(movingWalls wall);\n"), std::string::npos);
-    EXPECT_NE(boundary.find("        neighbourPatch  front;\n"), std::string::npos);
-    // OpenFOAM writes binary faces as a faceCompactList.
-    rbm::io::writePolyMesh(polyMeshDir, binaryFixture(), FoamWriteOptions{.binary = true});
-    EXPECT_NE(readText(polyMeshDir / "faces").find("class       faceCompactList;"), std::string::npos);
-}
-
-TEST(PolyMeshWriter, ReplacesTheStaleTwinOfACompressedFile)
-{
-    TempDir dir("twin");
-    std::vector<Vector3> moved = binaryFixture().points;
-    for (Vector3& x : moved) x.x += 1.0;
-    rbm::io::writePolyMeshPoints(dir.path(), "1", binaryFixture().points, FoamWriteOptions{});
-    rbm::io::writePolyMeshPoints(dir.path(), "1", moved, FoamWriteOptions{.compressed = true});
-    // A left-over uncompressed file would be read first and hide the new points.
-    EXPECT_FALSE(fs::exists(dir.path() / "1" / "polyMesh" / "points"));
-    expectPointsEqualToDigits(rbm::io::readPolyMeshPoints(dir.path() / "1" / "polyMesh"), moved, 10);
-    rbm::io::writePolyMeshPoints(dir.path(), "1", binaryFixture().points, FoamWriteOptions{});
-    EXPECT_FALSE(fs::exists(dir.path() / "1" / "polyMesh" / "points.gz"));
-}
-
-// ---- Speed: hand-written parsing, no tokenizer ----------------------------------------------
-
-TEST(FoamListReader, ParsesAMillionAsciiPointsQuickly)
-{
-    std::vector<Vector3> points(1000000);
-    for (std::size_t i = 0; i < points.size(); ++i) {
-        const double t = static_cast<double>(i);
-        points[i] = {std::sin(t) * 12.5, std::cos(t) * 0.001, t * 1e-6 - 0.5};
-    }
-    std::string text = "FoamFile { version 2.0; format ascii; class vectorField; object points; }\n";
-    const std::size_t body = text.size();
-    rbm::io::appendVectorList(text, points, false, 10);
-    const auto start = std::chrono::steady_clock::now();
-    rbm::io::FoamListReader reader(text, body, "points", rbm::io::FoamFileHeader{});
-    const std::vector<Vector3> back = reader.readVectorList("point", text.size());
-    reader.expectEnd();
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    RecordProperty("secondsToParse", std::to_string(seconds));
-    expectPointsEqualToDigits(back, points, 10);
-    // Well under a second in a Release build; the bound is loose for debug builds and a busy machine.
-    EXPECT_LT(seconds, 5.0);
-}
-
-// ---- List forms OpenFOAM writes that the fixtures do not contain ----------------------------
-
-TEST(FoamListReader, ReadsUniformUncountedAndEmptyBinaryLists)
-{
-    const rbm::io::FoamFileHeader ascii;
-    {
-        const std::string text = "5{7}  (1 2 3)  3(4 5 6) 0()";
-        rbm::io::FoamListReader reader(text, 0, "labels", ascii);
-        EXPECT_EQ(reader.readLabelList("label", 100), (std::vector<Label>{7, 7, 7, 7, 7}));
-        EXPECT_EQ(reader.readLabelList("label", 100), (std::vector<Label>{1, 2, 3}));
-        EXPECT_EQ(reader.readLabelList("label", 100), (std::vector<Label>{4, 5, 6}));
-        EXPECT_TRUE(reader.readLabelList("label", 100).empty());
-        reader.expectEnd();
-    }
-    {
-        // A face with more than 10 points is written over several lines, with comments around.
-        const std::string text = "2 // two faces\n(\n3(0 1 2)\n12\n(\n0\n1\n2\n3\n4\n5\n6\n7\n8\n9\n10\n11\n)\n) /* end */";
-        std::vector<Label> offsets{0}, labels;
-        rbm::io::FoamListReader reader(text, 0, "faces", ascii);
-        reader.readFaceList(offsets, labels);
-        reader.expectEnd();
-        EXPECT_EQ(offsets, (std::vector<Label>{0, 3, 15}));
-        EXPECT_EQ(labels.size(), 15u);
-    }
-    {
-        // Binary: an empty list is a bare "0"; a faceList is a list of binary label lists.
-        rbm::io::FoamFileHeader binary;
-        binary.format = "binary";
-        std::string text = "\n0\n\n2\n(\n3\n(";
-        const std::int32_t face0[3] = {0, 1, 2}, face1[4] = {2, 1, 3, 4};
-        text.append(reinterpret_cast<const char*>(face0), sizeof face0);
-        text += ")\n4\n(";
-        text.append(reinterpret_cast<const char*>(face1), sizeof face1);
-        text += ")\n)\n";
-        rbm::io::FoamListReader reader(text, 0, "faces", binary);
-        EXPECT_TRUE(reader.readLabelList("label", 0).empty());
-        std::vector<Label> offsets{0}, labels;
-        reader.readFaceList(offsets, labels);
-        reader.expectEnd();
-        EXPECT_EQ(offsets, (std::vector<Label>{0, 3, 7}));
-        EXPECT_EQ(labels, (std::vector<Label>{0, 1, 2, 2, 1, 3, 4}));
-    }
-}
-
-// ---- Malformed input: every problem an InputError naming the file and what was expected ----
 
 class PolyMeshMalformed : public ::testing::Test {
 protected:
@@ -733,8 +468,6 @@ TEST_F(PolyMeshMalformed, MissingFile)
     expectInputError([&] { rbm::io::readPolyMesh(mesh); }, {"owner", "owner.gz", "not found"});
 }
 
-// ---- Entries and zones the fixtures do not have --------------------------------------------
-
 TEST(PolyMeshReader, KeepsUnknownPatchEntriesThroughARoundTrip)
 {
     TempDir dir("otherEntries");
@@ -795,18 +528,4 @@ TEST_F(PolyMeshMalformed, CellWithTooFewFaces)
     text.replace(lastEntry, last - lastEntry, "200");
     writeText(mesh / "owner", text);
     expectInputError([&] { rbm::io::readPolyMesh(mesh); }, {"owner", "cell 200 has 1 faces", "at least 4"});
-}
-
-TEST(FoamListReader, ReadsUnderflowAsZeroAndRejectsOverflow)
-{
-    const std::string text = "2((1e-400 -2.5e-320 +3) (0 0 0))";
-    rbm::io::FoamListReader reader(text, 0, "points", rbm::io::FoamFileHeader{});
-    const std::vector<Vector3> points = reader.readVectorList("point", 10);
-    EXPECT_EQ(points[0].x, 0.0);
-    EXPECT_LT(points[0].y, 0.0);
-    EXPECT_GT(points[0].y, -1e-300);
-    EXPECT_EQ(points[0].z, 3.0);
-    const std::string overflow = "1((1e400 0 0))";
-    rbm::io::FoamListReader bad(overflow, 0, "points", rbm::io::FoamFileHeader{});
-    expectInputError([&] { bad.readVectorList("point", 10); }, {"points:1", "finite coordinate", "'1e400"});
 }
