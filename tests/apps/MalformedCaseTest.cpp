@@ -22,8 +22,6 @@
 #include <string>
 #include <vector>
 
-static auto* const petscEnvironment = ::testing::AddGlobalTestEnvironment(new rbm::test::PetscTestEnvironment);
-
 namespace {
 
 namespace fs = std::filesystem;
@@ -40,7 +38,6 @@ struct Malformed {
 };
 
 void PrintTo(const Malformed& malformed, std::ostream* out) { *out << malformed.name; }
-
 
 // Every file and folder of the case with its bytes.
 std::map<std::string, std::string> snapshot(const fs::path& root)

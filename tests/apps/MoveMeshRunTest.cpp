@@ -46,8 +46,6 @@
 
 using namespace rbm::test::moveMeshCases;
 
-static auto* const petscEnvironment = ::testing::AddGlobalTestEnvironment(new rbm::test::PetscTestEnvironment);
-
 namespace {
 
 using namespace rbm;

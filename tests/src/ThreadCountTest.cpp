@@ -40,9 +40,6 @@ using namespace rbm::test::threadCases;
 using namespace rbm;
 using namespace rbm::motion;
 
-static ::testing::Environment* const petscEnvironment =
-    ::testing::AddGlobalTestEnvironment(new rbm::test::PetscTestEnvironment);
-
 namespace {
 
 // Threads OpenMP starts in a region that asks for 4 with a num_threads clause, as CHOLMOD's

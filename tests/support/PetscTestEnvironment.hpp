@@ -1,7 +1,8 @@
 #pragma once
-// Initialises PETSc once per test program (every CTest entry pays PETSc's start-up once).
-// Register it from the test file:
-//   static auto* const petscEnvironment = ::testing::AddGlobalTestEnvironment(new rbm::test::PetscTestEnvironment);
+// Initialises PETSc once per test program (every CTest entry pays PETSc's start-up once):
+// including this header registers the environment, once per program. The solvers of a test
+// (the host solvers too) share that session instead of finalising PETSc, and the MPI it
+// started, when the first of them goes.
 
 #include "PetscSupport.hpp"
 
@@ -19,5 +20,9 @@ public:
 private:
     std::unique_ptr<motion::PetscSession> session_;
 };
+
+// The registration: an inline variable, so one per program whichever files include this.
+inline ::testing::Environment* const petscEnvironment =
+    ::testing::AddGlobalTestEnvironment(new PetscTestEnvironment);
 
 } // namespace rbm::test

@@ -34,8 +34,6 @@ using namespace rbm;
 using namespace rbm::motion;
 using namespace rbm::app;
 
-static auto* const petscEnvironment = ::testing::AddGlobalTestEnvironment(new rbm::test::PetscTestEnvironment);
-
 int worldSize()
 {
     int size = 1;

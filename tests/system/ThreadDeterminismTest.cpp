@@ -46,9 +46,6 @@ using namespace rbm::test::threadCases;
 using namespace rbm;
 using namespace rbm::motion;
 
-static ::testing::Environment* const petscEnvironment =
-    ::testing::AddGlobalTestEnvironment(new rbm::test::PetscTestEnvironment);
-
 namespace {
 
 constexpr int threadCounts[] = {1, 2, 3};

@@ -21,10 +21,6 @@
 namespace rbm::motion {
 namespace {
 
-// PETSc once for the program: the host solvers share it instead of finalising PETSc (and the
-// MPI it started) when the first test's solver goes.
-auto* const petscEnvironment = ::testing::AddGlobalTestEnvironment(new test::PetscTestEnvironment);
-
 host::HostMesh toHostMesh(const PolyMesh& mesh)
 {
     host::HostMesh host;

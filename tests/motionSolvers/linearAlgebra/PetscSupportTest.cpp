@@ -36,8 +36,6 @@
 
 using namespace rbm::motion::coreCases;
 
-static auto* const petscEnvironment = ::testing::AddGlobalTestEnvironment(new rbm::test::PetscTestEnvironment);
-
 namespace {
 
 using rbm::motion::BlockSystemSolver;

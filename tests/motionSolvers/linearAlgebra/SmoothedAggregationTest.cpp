@@ -16,9 +16,6 @@
 
 using namespace rbm::test::multigridCases;
 
-static ::testing::Environment* const petscEnvironment =
-    ::testing::AddGlobalTestEnvironment(new rbm::test::PetscTestEnvironment);
-
 namespace rbm::motion {
 
 namespace {

@@ -32,9 +32,6 @@
 
 using namespace rbm::motion::coreCases;
 
-static ::testing::Environment* const petscEnvironment =
-    ::testing::AddGlobalTestEnvironment(new rbm::test::PetscTestEnvironment);
-
 namespace rbm::motion {
 
 namespace {

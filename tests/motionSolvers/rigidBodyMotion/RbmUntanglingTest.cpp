@@ -26,9 +26,6 @@ namespace {
 using namespace rbm;
 using namespace rbm::motion;
 
-[[maybe_unused]] auto* const petscEnvironment =
-    ::testing::AddGlobalTestEnvironment(new rbm::test::PetscTestEnvironment);
-
 double degrees(double angle) { return angle * std::numbers::pi / 180.0; }
 
 // The slip box (issue 13.3): n³ hexahedra in [0, 1]³, the bottom fixed, the four sides `slip`,

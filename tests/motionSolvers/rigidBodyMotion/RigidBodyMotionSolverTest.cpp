@@ -45,9 +45,6 @@ namespace {
 using namespace rbm;
 using namespace rbm::motion;
 
-[[maybe_unused]] auto* const petscEnvironment =
-    ::testing::AddGlobalTestEnvironment(new rbm::test::PetscTestEnvironment);
-
 void moveAllPatches(MotionSolver& solver, const RigidMotion& motion)
 {
     for (const Patch& patch : solver.mesh().patches) {

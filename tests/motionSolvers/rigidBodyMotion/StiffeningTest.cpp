@@ -58,9 +58,6 @@ namespace {
 using namespace rbm;
 using namespace rbm::motion;
 
-[[maybe_unused]] auto* const petscEnvironment =
-    ::testing::AddGlobalTestEnvironment(new rbm::test::PetscTestEnvironment);
-
 struct RigidTurn {
     double angle = 0.0;  // about +z
     Vector3 centre;

@@ -19,9 +19,6 @@ namespace {
 using namespace rbm;
 using namespace rbm::motion;
 
-[[maybe_unused]] auto* const petscEnvironment =
-    ::testing::AddGlobalTestEnvironment(new rbm::test::PetscTestEnvironment);
-
 // A 4 × 3 × 3 box: xMin moves by (0.4, 0.3, 0.2) as a rigid wall, xMax is fixed, the other
 // four sides are zeroGradient. Left free, those sides bulge with the moving wall.
 const char* const boxConditions = R"(

@@ -8,9 +8,6 @@
 #include <cmath>
 #include <vector>
 
-static ::testing::Environment* const petscEnvironment =
-    ::testing::AddGlobalTestEnvironment(new rbm::test::PetscTestEnvironment);
-
 namespace rbm::motion {
 namespace {
 

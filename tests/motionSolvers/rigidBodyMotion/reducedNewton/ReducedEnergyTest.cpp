@@ -12,9 +12,6 @@
 #include <random>
 #include <vector>
 
-static ::testing::Environment* const petscEnvironment =
-    ::testing::AddGlobalTestEnvironment(new rbm::test::PetscTestEnvironment);
-
 namespace rbm::motion {
 namespace {
 

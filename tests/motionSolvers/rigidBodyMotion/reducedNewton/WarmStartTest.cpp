@@ -10,9 +10,6 @@
 #include <string>
 #include <vector>
 
-static ::testing::Environment* const petscEnvironment =
-    ::testing::AddGlobalTestEnvironment(new rbm::test::PetscTestEnvironment);
-
 namespace rbm::motion {
 namespace {
 
