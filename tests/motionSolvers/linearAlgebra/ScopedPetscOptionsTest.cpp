@@ -9,9 +9,6 @@
 namespace rbm::motion {
 namespace {
 
-[[maybe_unused]] ::testing::Environment* const petscEnvironment =
-    ::testing::AddGlobalTestEnvironment(new rbm::test::PetscTestEnvironment);
-
 std::string valueOf(const char* name)
 {
     char value[64] = "";

@@ -4,7 +4,7 @@
 
 #include "MeshGenerators.hpp"
 #include "PetscTestEnvironment.hpp"
-#include "RbmSolverCases.hpp"
+#include "TestCases.hpp"
 
 #include <gtest/gtest.h>
 
@@ -13,9 +13,6 @@
 
 namespace rbm::motion {
 namespace {
-
-[[maybe_unused]] ::testing::Environment* const petscEnvironment =
-    ::testing::AddGlobalTestEnvironment(new rbm::test::PetscTestEnvironment);
 
 // A quarter annulus, radii 1 (xMin) and 2 (xMax), 6 cells across, 48 around, two layers in z:
 // the hex box's x → radius 1 + x, y → angle y π/2.

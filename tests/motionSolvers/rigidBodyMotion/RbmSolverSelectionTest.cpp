@@ -18,9 +18,6 @@
 namespace rbm::motion {
 namespace {
 
-[[maybe_unused]] ::testing::Environment* const petscEnvironment =
-    ::testing::AddGlobalTestEnvironment(new rbm::test::PetscTestEnvironment);
-
 // A 4 × 4 × 4 hex box, xMin held, xMax prescribed, the rest free.
 struct BoxProblem {
     PolyMesh mesh = makeHexBox(4, 4, 4, {0, 0, 0}, {1, 1, 1});
