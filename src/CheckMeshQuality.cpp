@@ -149,48 +149,60 @@ void computeMeshDirections(const PolyMesh& mesh, std::span<const Vector3> faceAr
     }
 }
 
-CheckMeshQuality computeCheckMeshQuality(const PolyMesh& mesh, std::span<const Vector3> points,
-                                         const MeshGeometry& geometry, CheckMeshWorkspace& workspace)
-{
-    CheckMeshQuality q;
-    q.pointCount = mesh.pointCount();
-    q.faceCount = mesh.faceCount();
-    q.internalFaceCount = mesh.internalFaceCount();
-    q.cellCount = static_cast<Label>(geometry.cellVolumes.size());
-    if (geometry.faceAreas.size() != static_cast<std::size_t>(q.faceCount) ||
-        points.size() != mesh.points.size()) {
-        throw std::invalid_argument("computeCheckMeshQuality: the geometry (" + std::to_string(geometry.faceAreas.size()) +
-                                    " faces) or points (" + std::to_string(points.size()) +
-                                    ") do not belong to this mesh");
-    }
+namespace {
 
+// checkMesh's costly per-face measures, by threads (each writes its own faces): the
+// non-orthogonality cosine of every internal face and the skewness of every face.
+void computeFaceMeasures(const PolyMesh& mesh, std::span<const Vector3> points, const MeshGeometry& geometry,
+                         std::vector<double>& faceCosine, std::vector<double>& faceSkew)
+{
+    const Label faceCount = mesh.faceCount();
+    const Label internalFaceCount = mesh.internalFaceCount();
     const std::span<const Vector3> faceCentres = geometry.faceCentres;
     const std::span<const Vector3> faceAreas = geometry.faceAreas;
     const std::span<const Vector3> cellCentres = geometry.cellCentres;
-    const std::span<const double> cellVolumes = geometry.cellVolumes;
     const Label* owner = mesh.owner.data();
     const Label* neighbour = mesh.neighbour.data();
-
-    // Overall domain bounding box (boundBox of all points).
-    if (!points.empty()) {
-        q.boundingBoxMin = q.boundingBoxMax = points[0];
-        for (const Vector3& p : points) {
-            for (int i = 0; i < 3; ++i) {
-                q.boundingBoxMin[i] = std::min(q.boundingBoxMin[i], p[i]);
-                q.boundingBoxMax[i] = std::max(q.boundingBoxMax[i], p[i]);
-            }
+#pragma omp parallel for schedule(static) if (worthThreading(static_cast<std::size_t>(faceCount)))
+    for (Label f = 0; f < faceCount; ++f) {
+        const Vector3& S = faceAreas[f];
+        const Vector3& fc = faceCentres[f];
+        const Label own = owner[f];
+        if (f < internalFaceCount) {
+            const Label nei = neighbour[f];
+            faceCosine[f] = faceNonOrthogonalityCosine(cellCentres[own], cellCentres[nei], S);
+            faceSkew[f] = faceSkewness(mesh.face(f), points, fc, S, cellCentres[own], cellCentres[nei]);
+        } else {
+            faceSkew[f] = boundaryFaceSkewness(mesh.face(f), points, fc, S, cellCentres[own]);
         }
     }
-    computeMeshDirections(mesh, faceAreas, q.solutionDirections, q.geometricDirections);
+}
 
-    auto& sumClosed = workspace.sumClosed;
-    auto& sumMagClosed = workspace.sumMagClosed;
-    sumClosed.assign(static_cast<std::size_t>(q.cellCount), Vector3{});
-    sumMagClosed.assign(static_cast<std::size_t>(q.cellCount), Vector3{});
+// Overall domain bounding box (boundBox of all points).
+void measureBoundingBox(std::span<const Vector3> points, CheckMeshQuality& q)
+{
+    if (points.empty()) return;
+    q.boundingBoxMin = q.boundingBoxMax = points[0];
+    for (const Vector3& p : points) {
+        for (int i = 0; i < 3; ++i) {
+            q.boundingBoxMin[i] = std::min(q.boundingBoxMin[i], p[i]);
+            q.boundingBoxMax[i] = std::max(q.boundingBoxMax[i], p[i]);
+        }
+    }
+}
 
-    const double severeCosine = std::cos(degreesToRadians(CheckMeshQuality::nonOrthogonalityThreshold));
-    const double minPyramidVolume = -small;   // checkGeometry.C: checkFacePyramids(true, -SMALL, ...)
-
+// The face checks' sums, minima and counts, taken face by face in face order.
+struct FaceChecks {
+    const MeshGeometry& geometry;
+    const Label* owner;
+    const Label* neighbour;
+    const std::vector<double>& faceCosine;
+    const std::vector<double>& faceSkew;
+    CheckMeshQuality& q;
+    std::vector<Vector3>& sumClosed;
+    std::vector<Vector3>& sumMagClosed;
+    double severeCosine = std::cos(degreesToRadians(CheckMeshQuality::nonOrthogonalityThreshold));
+    double minPyramidVolume = -small;   // checkGeometry.C: checkFacePyramids(true, -SMALL, ...)
     double minArea = std::numeric_limits<double>::max();
     double maxArea = -std::numeric_limits<double>::max();
     double minCosine = veryGreat;
@@ -200,30 +212,14 @@ CheckMeshQuality computeCheckMeshQuality(const PolyMesh& mesh, std::span<const V
     double sumWeight = 0.0;
     double minRatio = veryGreat;
     double sumRatio = 0.0;
-    Vector3 boundarySum;
+    Vector3 boundarySum{};
     double boundaryMagnitudeSum = 0.0;
 
-    // The costly per-face measures first, by threads (each writes its own faces); the sums,
-    // minima and counts below then run in face order as before, whatever the thread count.
-    std::vector<double> faceCosine(static_cast<std::size_t>(q.internalFaceCount));
-    std::vector<double> faceSkew(static_cast<std::size_t>(q.faceCount));
-#pragma omp parallel for schedule(static) if (worthThreading(static_cast<std::size_t>(q.faceCount)))
-    for (Label f = 0; f < q.faceCount; ++f) {
-        const Vector3& S = faceAreas[f];
-        const Vector3& fc = faceCentres[f];
-        const Label own = owner[f];
-        if (f < q.internalFaceCount) {
-            const Label nei = neighbour[f];
-            faceCosine[f] = faceNonOrthogonalityCosine(cellCentres[own], cellCentres[nei], S);
-            faceSkew[f] = faceSkewness(mesh.face(f), points, fc, S, cellCentres[own], cellCentres[nei]);
-        } else {
-            faceSkew[f] = boundaryFaceSkewness(mesh.face(f), points, fc, S, cellCentres[own]);
-        }
-    }
-
-    for (Label f = 0; f < q.faceCount; ++f) {
-        const Vector3& S = faceAreas[f];
-        const Vector3& fc = faceCentres[f];
+    // Face f: areas, the owner's closedness, the owner's pyramid, then the internal or boundary checks.
+    void add(Label f)
+    {
+        const Vector3& S = geometry.faceAreas[f];
+        const Vector3& fc = geometry.faceCentres[f];
         const Label own = owner[f];
         const Vector3 magS = componentMagnitudes(S);
         const double area = norm(S);
@@ -238,45 +234,10 @@ CheckMeshQuality computeCheckMeshQuality(const PolyMesh& mesh, std::span<const V
         sumMagClosed[own] += magS;
 
         // checkFacePyramids, owner side: -pyramid(face, C_o).mag() = S.(C_f - C_o)/3.
-        if ((1.0 / 3.0) * dot(S, fc - cellCentres[own]) < minPyramidVolume) ++q.incorrectlyOrientedPyramidCount;
+        if ((1.0 / 3.0) * dot(S, fc - geometry.cellCentres[own]) < minPyramidVolume) ++q.incorrectlyOrientedPyramidCount;
 
         if (f < q.internalFaceCount) {
-            const Label nei = neighbour[f];
-            if ((1.0 / 3.0) * dot(S, cellCentres[nei] - fc) < minPyramidVolume) ++q.incorrectlyOrientedPyramidCount;
-
-            // polyMesh::checkFaceOrthogonality
-            const double cosine = faceCosine[f];
-            if (cosine < severeCosine) {
-                if (cosine > small) {
-                    ++q.severelyNonOrthogonalFaceCount;
-                } else {
-                    ++q.nonOrthogonalityErrorCount;
-                }
-            }
-            minCosine = std::min(minCosine, cosine);
-            sumCosine += cosine;
-
-            // polyMesh::checkFaceSkewness
-            const double skew = faceSkew[f];
-            maxSkew = std::max(maxSkew, skew);
-            if (skew > CheckMeshQuality::skewnessThreshold) ++q.severelySkewFaceCount;
-
-            // polyMeshTools::faceWeights and volRatio
-            const double ownerDistance = std::abs(dot(S, fc - cellCentres[own]));
-            const double neighbourDistance = std::abs(dot(S, cellCentres[nei] - fc));
-            const double weight =
-                std::min(neighbourDistance, ownerDistance) / (neighbourDistance + ownerDistance + verySmall);
-            minWeight = std::min(minWeight, weight);
-            sumWeight += weight;
-            if (weight < CheckMeshQuality::faceWeightThreshold) ++q.lowWeightFaceCount;
-
-            const double ownerVolume = cellVolumes[own];
-            const double neighbourVolume = cellVolumes[nei];
-            const double ratio =
-                std::min(ownerVolume, neighbourVolume) / (std::max(ownerVolume, neighbourVolume) + verySmall);
-            minRatio = std::min(minRatio, ratio);
-            sumRatio += ratio;
-            if (ratio < CheckMeshQuality::volumeRatioThreshold) ++q.lowVolumeRatioFaceCount;
+            addInternal(f, S, fc, own);
         } else {
             // checkClosedBoundary
             boundarySum += S;
@@ -288,30 +249,94 @@ CheckMeshQuality computeCheckMeshQuality(const PolyMesh& mesh, std::span<const V
         }
     }
 
-    // Neighbour contributions in a second loop, as cellClosedness adds them: the same
-    // summation order gives bit-identical aspect ratios.
-    for (Label f = 0; f < q.internalFaceCount; ++f) {
-        sumClosed[neighbour[f]] -= faceAreas[f];
-        sumMagClosed[neighbour[f]] += componentMagnitudes(faceAreas[f]);
+    // Internal face f: the neighbour's pyramid, non-orthogonality, skewness, weight and volume ratio.
+    void addInternal(Label f, const Vector3& S, const Vector3& fc, Label own)
+    {
+        const std::span<const Vector3> cellCentres = geometry.cellCentres;
+        const Label nei = neighbour[f];
+        if ((1.0 / 3.0) * dot(S, cellCentres[nei] - fc) < minPyramidVolume) ++q.incorrectlyOrientedPyramidCount;
+
+        // polyMesh::checkFaceOrthogonality
+        const double cosine = faceCosine[f];
+        if (cosine < severeCosine) {
+            if (cosine > small) {
+                ++q.severelyNonOrthogonalFaceCount;
+            } else {
+                ++q.nonOrthogonalityErrorCount;
+            }
+        }
+        minCosine = std::min(minCosine, cosine);
+        sumCosine += cosine;
+
+        // polyMesh::checkFaceSkewness
+        const double skew = faceSkew[f];
+        maxSkew = std::max(maxSkew, skew);
+        if (skew > CheckMeshQuality::skewnessThreshold) ++q.severelySkewFaceCount;
+
+        // polyMeshTools::faceWeights and volRatio
+        const double ownerDistance = std::abs(dot(S, fc - cellCentres[own]));
+        const double neighbourDistance = std::abs(dot(S, cellCentres[nei] - fc));
+        const double weight =
+            std::min(neighbourDistance, ownerDistance) / (neighbourDistance + ownerDistance + verySmall);
+        minWeight = std::min(minWeight, weight);
+        sumWeight += weight;
+        if (weight < CheckMeshQuality::faceWeightThreshold) ++q.lowWeightFaceCount;
+
+        const double ownerVolume = geometry.cellVolumes[own];
+        const double neighbourVolume = geometry.cellVolumes[nei];
+        const double ratio =
+            std::min(ownerVolume, neighbourVolume) / (std::max(ownerVolume, neighbourVolume) + verySmall);
+        minRatio = std::min(minRatio, ratio);
+        sumRatio += ratio;
+        if (ratio < CheckMeshQuality::volumeRatioThreshold) ++q.lowVolumeRatioFaceCount;
     }
 
-    if (q.faceCount > 0) {
-        q.minFaceArea = minArea;
-        q.maxFaceArea = maxArea;
+    // The face figures of q from the sums and extremes.
+    void store() const
+    {
+        if (q.faceCount > 0) {
+            q.minFaceArea = minArea;
+            q.maxFaceArea = maxArea;
+        }
+        q.boundaryOpenness = boundarySum / (boundaryMagnitudeSum + verySmall);
+        q.maxSkewness = maxSkew;
+        if (q.internalFaceCount > 0) {
+            const double n = static_cast<double>(q.internalFaceCount);
+            q.maxNonOrthogonality = radiansToDegrees(std::acos(std::clamp(minCosine, -1.0, 1.0)));
+            q.averageNonOrthogonality = radiansToDegrees(std::acos(std::clamp(sumCosine / n, -1.0, 1.0)));
+            q.minFaceWeight = minWeight;
+            q.averageFaceWeight = sumWeight / n;
+            q.minVolumeRatio = minRatio;
+            q.averageVolumeRatio = sumRatio / n;
+        }
     }
-    q.boundaryOpenness = boundarySum / (boundaryMagnitudeSum + verySmall);
-    q.maxSkewness = maxSkew;
-    if (q.internalFaceCount > 0) {
-        const double n = static_cast<double>(q.internalFaceCount);
-        q.maxNonOrthogonality = radiansToDegrees(std::acos(std::clamp(minCosine, -1.0, 1.0)));
-        q.averageNonOrthogonality = radiansToDegrees(std::acos(std::clamp(sumCosine / n, -1.0, 1.0)));
-        q.minFaceWeight = minWeight;
-        q.averageFaceWeight = sumWeight / n;
-        q.minVolumeRatio = minRatio;
-        q.averageVolumeRatio = sumRatio / n;
-    }
+};
 
-    // Per cell: openness, aspect ratio (cellClosedness with meshD = geometricD), volumes.
+// cellClosedness' aspect ratio of a cell from its component-wise |S| sums and volume.
+double cellAspectRatio(const Vector3& magClosed, const std::array<int, 3>& geometricDirections, int dimensions,
+                       double cellVolume)
+{
+    double minComponent = veryGreat;
+    double maxComponent = -veryGreat;
+    for (int i = 0; i < 3; ++i) {
+        if (geometricDirections[i] == 1) {
+            minComponent = std::min(minComponent, magClosed[i]);
+            maxComponent = std::max(maxComponent, magClosed[i]);
+        }
+    }
+    double aspectRatio = maxComponent / (minComponent + rootVerySmall);
+    if (dimensions == 3) {
+        const double v = std::max(rootVerySmall, cellVolume);
+        aspectRatio = std::max(aspectRatio,
+                               1.0 / 6.0 * (magClosed.x + magClosed.y + magClosed.z) / std::pow(v, 2.0 / 3.0));
+    }
+    return aspectRatio;
+}
+
+// Per cell: openness, aspect ratio (cellClosedness with meshD = geometricD), volumes.
+void checkCells(std::span<const double> cellVolumes, const std::vector<Vector3>& sumClosed,
+                const std::vector<Vector3>& sumMagClosed, CheckMeshQuality& q)
+{
     const int dimensions = q.geometricDimensionCount();
     double minVolume = std::numeric_limits<double>::max();
     double maxVolume = -std::numeric_limits<double>::max();
@@ -326,20 +351,7 @@ CheckMeshQuality computeCheckMeshQuality(const PolyMesh& mesh, std::span<const V
         if (openness > CheckMeshQuality::closedThreshold) ++q.openCellCount;
         maxOpenness = std::max(maxOpenness, openness);
 
-        double minComponent = veryGreat;
-        double maxComponent = -veryGreat;
-        for (int i = 0; i < 3; ++i) {
-            if (q.geometricDirections[i] == 1) {
-                minComponent = std::min(minComponent, magClosed[i]);
-                maxComponent = std::max(maxComponent, magClosed[i]);
-            }
-        }
-        double aspectRatio = maxComponent / (minComponent + rootVerySmall);
-        if (dimensions == 3) {
-            const double v = std::max(rootVerySmall, cellVolumes[c]);
-            aspectRatio = std::max(aspectRatio,
-                                   1.0 / 6.0 * (magClosed.x + magClosed.y + magClosed.z) / std::pow(v, 2.0 / 3.0));
-        }
+        const double aspectRatio = cellAspectRatio(magClosed, q.geometricDirections, dimensions, cellVolumes[c]);
         if (aspectRatio > CheckMeshQuality::aspectThreshold) ++q.highAspectRatioCellCount;
         maxAspect = std::max(maxAspect, aspectRatio);
 
@@ -356,6 +368,49 @@ CheckMeshQuality computeCheckMeshQuality(const PolyMesh& mesh, std::span<const V
         q.maxCellVolume = maxVolume;
     }
     q.totalVolume = totalVolume;
+}
+
+} // namespace
+
+CheckMeshQuality computeCheckMeshQuality(const PolyMesh& mesh, std::span<const Vector3> points,
+                                         const MeshGeometry& geometry, CheckMeshWorkspace& workspace)
+{
+    CheckMeshQuality q;
+    q.pointCount = mesh.pointCount();
+    q.faceCount = mesh.faceCount();
+    q.internalFaceCount = mesh.internalFaceCount();
+    q.cellCount = static_cast<Label>(geometry.cellVolumes.size());
+    if (geometry.faceAreas.size() != static_cast<std::size_t>(q.faceCount) ||
+        points.size() != mesh.points.size()) {
+        throw std::invalid_argument("computeCheckMeshQuality: the geometry (" + std::to_string(geometry.faceAreas.size()) +
+                                    " faces) or points (" + std::to_string(points.size()) +
+                                    ") do not belong to this mesh");
+    }
+    measureBoundingBox(points, q);
+    computeMeshDirections(mesh, geometry.faceAreas, q.solutionDirections, q.geometricDirections);
+
+    auto& sumClosed = workspace.sumClosed;
+    auto& sumMagClosed = workspace.sumMagClosed;
+    sumClosed.assign(static_cast<std::size_t>(q.cellCount), Vector3{});
+    sumMagClosed.assign(static_cast<std::size_t>(q.cellCount), Vector3{});
+
+    // The costly per-face measures first, by threads (each writes its own faces); the sums,
+    // minima and counts below then run in face order as before, whatever the thread count.
+    std::vector<double> faceCosine(static_cast<std::size_t>(q.internalFaceCount));
+    std::vector<double> faceSkew(static_cast<std::size_t>(q.faceCount));
+    computeFaceMeasures(mesh, points, geometry, faceCosine, faceSkew);
+
+    FaceChecks faces{geometry, mesh.owner.data(), mesh.neighbour.data(), faceCosine, faceSkew, q, sumClosed, sumMagClosed};
+    for (Label f = 0; f < q.faceCount; ++f) faces.add(f);
+
+    // Neighbour contributions in a second loop, as cellClosedness adds them: the same
+    // summation order gives bit-identical aspect ratios.
+    for (Label f = 0; f < q.internalFaceCount; ++f) {
+        sumClosed[mesh.neighbour[f]] -= geometry.faceAreas[f];
+        sumMagClosed[mesh.neighbour[f]] += componentMagnitudes(geometry.faceAreas[f]);
+    }
+    faces.store();
+    checkCells(geometry.cellVolumes, sumClosed, sumMagClosed, q);
     return q;
 }
 
@@ -389,53 +444,34 @@ CheckMeshExtremes computeCheckMeshExtremes(const PolyMesh& mesh, std::span<const
                                     " faces) or points (" + std::to_string(points.size()) +
                                     ") do not belong to this mesh");
     }
-    const std::span<const Vector3> faceCentres = geometry.faceCentres;
-    const std::span<const Vector3> faceAreas = geometry.faceAreas;
-    const std::span<const Vector3> cellCentres = geometry.cellCentres;
-    const Label* owner = mesh.owner.data();
-    const Label* neighbour = mesh.neighbour.data();
-
     // The per-face measures of computeCheckMeshQuality, by threads; then its minimum and
     // maximum in face order: the same figures, whatever the thread count.
     auto& faceCosine = workspace.faceCosine;
     auto& faceSkew = workspace.faceSkew;
     faceCosine.resize(static_cast<std::size_t>(internalFaceCount));
     faceSkew.resize(static_cast<std::size_t>(faceCount));
-#pragma omp parallel for schedule(static) if (worthThreading(static_cast<std::size_t>(faceCount)))
-    for (Label f = 0; f < faceCount; ++f) {
-        const Vector3& S = faceAreas[f];
-        const Vector3& fc = faceCentres[f];
-        const Label own = owner[f];
-        if (f < internalFaceCount) {
-            const Label nei = neighbour[f];
-            faceCosine[f] = faceNonOrthogonalityCosine(cellCentres[own], cellCentres[nei], S);
-            faceSkew[f] = faceSkewness(mesh.face(f), points, fc, S, cellCentres[own], cellCentres[nei]);
-        } else {
-            faceSkew[f] = boundaryFaceSkewness(mesh.face(f), points, fc, S, cellCentres[own]);
-        }
-    }
+    computeFaceMeasures(mesh, points, geometry, faceCosine, faceSkew);
     return extremesOfFaceMeasures(faceCosine, faceSkew);
 }
 
-std::optional<CheckMeshExtremes> computeExtrusionCheckMeshExtremes(const PolyMesh& mesh, const PseudoTwoDMesh& twoD,
-                                                                   std::span<const Vector3> points,
-                                                                   ExtrusionExtremesWorkspace& workspace)
+namespace {
+
+// The front-plane positions of the 2D nodes in the plane's frame (z = 0) and the planes'
+// distance; false when the points are no longer an extrusion to rounding.
+bool projectExtrusion(const PseudoTwoDMesh& twoD, std::span<const Vector3> points, std::vector<Vector3>& positions,
+                      double& thickness)
 {
-    if (twoD.kind != PseudoTwoDKind::Empty || points.size() != mesh.points.size()) return std::nullopt;
-    const PlanarMesh& planar = twoD.planar;
     const PlaneFrame& frame = twoD.frame;
-    const Label nodes = planar.nodeCount();
-    if (nodes == 0) return std::nullopt;
+    const Label nodes = twoD.planar.nodeCount();
     // Still an extrusion to rounding? Both planes' coordinates of every node, within
     // extrusionTolerance of the thickness (out of plane) or of the coordinates' size (in plane):
     // a body turned about the plane's normal moves its points out of plane by the rounding of
     // its rotation (0.1 + 2e-17 on the benchmark's airfoil).
     constexpr double extrusionTolerance = 1e-12;
-    auto& positions = workspace.planarPositions;
     positions.resize(static_cast<std::size_t>(nodes));
     const double frontPlane = frame.toLocal(points[twoD.frontPointOfNode[0]]).z;
     const double backPlane = frame.toLocal(points[twoD.backPointOfNode[0]]).z;
-    const double thickness = backPlane - frontPlane;
+    thickness = backPlane - frontPlane;
     const double outOfPlane = extrusionTolerance * thickness;
     bool extrusion = thickness > 0.0;
 #pragma omp parallel for schedule(static) reduction(&& : extrusion) if (worthThreading(static_cast<std::size_t>(nodes)))
@@ -447,11 +483,14 @@ std::optional<CheckMeshExtremes> computeExtrusionCheckMeshExtremes(const PolyMes
                     std::abs(front.z - frontPlane) <= outOfPlane && std::abs(back.z - backPlane) <= outOfPlane;
         positions[n] = {front.x, front.y, 0.0};
     }
-    if (!extrusion) return std::nullopt;
+    return extrusion;
+}
 
-    // Cell centres: the polygon's centroid (shoelace, about its first vertex) at mid-thickness.
+// Cell centres: the polygon's centroid (shoelace, about its first vertex) at mid-thickness;
+// false when a polygon's area is not positive.
+bool planarCellCentres(const PlanarMesh& planar, std::span<const Vector3> positions, std::vector<Vector3>& cellCentres)
+{
     const Label cellCount = planar.cellCount();
-    auto& cellCentres = workspace.cellCentres;
     cellCentres.resize(static_cast<std::size_t>(cellCount));
     bool positive = true;
 #pragma omp parallel for schedule(static) reduction(&& : positive) if (worthThreading(static_cast<std::size_t>(cellCount)))
@@ -471,8 +510,14 @@ std::optional<CheckMeshExtremes> computeExtrusionCheckMeshExtremes(const PolyMes
         const double scale = twiceArea > 0.0 ? 1.0 / (3.0 * twiceArea) : 0.0;
         cellCentres[c] = {origin.x + sumX * scale, origin.y + sumY * scale, 0.0};
     }
-    if (!positive) return std::nullopt;  // an inverted cell: OpenFOAM's decompositions decide
+    return positive;
+}
 
+// checkMesh's extremes over the side faces, one per 2D edge, by threads.
+CheckMeshExtremes sideFaceExtremes(const PlanarMesh& planar, std::span<const Vector3> positions,
+                                   std::span<const Vector3> cellCentres, double thickness,
+                                   std::vector<double>& edgeCosine, std::vector<double>& edgeSkew)
+{
     // Side faces, one per 2D edge: centre at the edge's midpoint, area (dy, −dx) × thickness
     // (the edge runs counter-clockwise around its owner, whose side the normal leaves). Every
     // vector the measures take lies in the plane (centres all at mid-thickness), so they are
@@ -481,8 +526,6 @@ std::optional<CheckMeshExtremes> computeExtrusionCheckMeshExtremes(const PolyMes
     // takes |direction · (corner − centre)| with an in-plane direction).
     const Label edgeCount = planar.edgeCount();
     const Label internalEdges = planar.internalEdgeCount();
-    auto& edgeCosine = workspace.edgeCosine;
-    auto& edgeSkew = workspace.edgeSkew;
     edgeCosine.resize(static_cast<std::size_t>(internalEdges));
     edgeSkew.resize(static_cast<std::size_t>(edgeCount));
 #pragma omp parallel for schedule(static) if (worthThreading(static_cast<std::size_t>(edgeCount)))
@@ -502,6 +545,23 @@ std::optional<CheckMeshExtremes> computeExtrusionCheckMeshExtremes(const PolyMes
         }
     }
     return extremesOfFaceMeasures(edgeCosine, edgeSkew);  // the empty faces' skewness 0 adds nothing
+}
+
+} // namespace
+
+std::optional<CheckMeshExtremes> computeExtrusionCheckMeshExtremes(const PolyMesh& mesh, const PseudoTwoDMesh& twoD,
+                                                                   std::span<const Vector3> points,
+                                                                   ExtrusionExtremesWorkspace& workspace)
+{
+    if (twoD.kind != PseudoTwoDKind::Empty || points.size() != mesh.points.size()) return std::nullopt;
+    if (twoD.planar.nodeCount() == 0) return std::nullopt;
+    double thickness = 0.0;
+    if (!projectExtrusion(twoD, points, workspace.planarPositions, thickness)) return std::nullopt;
+    if (!planarCellCentres(twoD.planar, workspace.planarPositions, workspace.cellCentres)) {
+        return std::nullopt;  // an inverted cell: OpenFOAM's decompositions decide
+    }
+    return sideFaceExtremes(twoD.planar, workspace.planarPositions, workspace.cellCentres, thickness,
+                            workspace.edgeCosine, workspace.edgeSkew);
 }
 
 CheckMeshQuality computeCheckMeshQuality(const PolyMesh& mesh, const MeshGeometry& geometry)

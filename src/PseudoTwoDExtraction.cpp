@@ -233,42 +233,66 @@ PseudoTwoDMesh extractPseudoTwoD(const PolyMesh& mesh, const PseudoTwoDOptions& 
     return extractPseudoTwoD(mesh, buildMeshTopology(mesh), options);
 }
 
-PseudoTwoDMesh extractPseudoTwoD(const PolyMesh& mesh, const MeshTopology& topology, const PseudoTwoDOptions& options)
-{
-    PseudoTwoDMesh result;
-    result.kind = detectPseudoTwoD(mesh);
-    if (result.kind == PseudoTwoDKind::None) {
-        fail("the mesh has no patch of type empty or wedge with faces, so it is not a pseudo-2D case "
-             "(one layer of cells between two empty or wedge planes)");
-    }
-    const bool wedge = result.kind == PseudoTwoDKind::Wedge;
-    const std::string planeType = wedge ? "wedge" : "empty";
-    const Label pointCount = mesh.pointCount();
-    const Label faceCount = mesh.faceCount();
-    const Label cellCount = topology.cellCount;
+namespace {
 
-    // Tolerance from the bounding box.
-    Vector3 low{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(), std::numeric_limits<double>::max()};
-    Vector3 high = -low;
-    for (const Vector3& p : mesh.points) {
-        for (int a = 0; a < 3; ++a) {
-            low[a] = std::min(low[a], p[a]);
-            high[a] = std::max(high[a], p[a]);
-        }
-    }
-    const double tolerance = options.relativeTolerance * norm(high - low);
-    if (!(tolerance > 0.0)) fail("the mesh has no extent (all points coincide)");
-
-    // --- Plane patches and the front / back side of every plane face.
-    std::vector<bool> isPlanePatch(mesh.patches.size(), false);
+// One extraction in progress: the mesh, what is known so far about its two planes, and the
+// 2D mesh being filled. Each step is one of the checks the header lists, in order.
+struct Extraction {
+    const PolyMesh& mesh;
+    const MeshTopology& topology;
+    PseudoTwoDMesh& result;
+    bool wedge;
+    std::string planeType;
+    Label pointCount;
+    Label faceCount;
+    Label cellCount;
+    double tolerance = 0.0;
+    std::vector<bool> isPlanePatch;
     std::vector<Label> planePatches;
-    for (std::size_t p = 0; p < mesh.patches.size(); ++p) {
-        const Patch& patch = mesh.patches[p];
-        if (patch.type != planeType) continue;
-        isPlanePatch[p] = true;
-        if (patch.faceCount > 0) planePatches.push_back(static_cast<Label>(p));
+    std::vector<std::uint8_t> faceSide;
+    Vector3 frontNormal;   // outward normal of the front plane faces (points out of the cells)
+    Vector3 backNormal;
+    std::vector<std::uint8_t> pointSide;
+    std::vector<bool> used;
+    double frontLevel = 0.0, backLevel = 0.0;
+    std::vector<bool> covered;   // per polygon edge (cell, local index)
+    Label axisPatch = -1;
+    Label zeroFaceEmptyPatches = 0;
+
+    // The state for `result`, whose kind is already detected (not None).
+    Extraction(const PolyMesh& mesh, const MeshTopology& topology, PseudoTwoDMesh& result)
+        : mesh(mesh), topology(topology), result(result), wedge(result.kind == PseudoTwoDKind::Wedge),
+          planeType(wedge ? "wedge" : "empty"), pointCount(mesh.pointCount()), faceCount(mesh.faceCount()),
+          cellCount(topology.cellCount)
+    {
     }
-    if (wedge) {
+
+    // The tolerance: options' relative tolerance times the bounding box diagonal.
+    void measureTolerance(const PseudoTwoDOptions& options)
+    {
+        Vector3 low{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(), std::numeric_limits<double>::max()};
+        Vector3 high = -low;
+        for (const Vector3& p : mesh.points) {
+            for (int a = 0; a < 3; ++a) {
+                low[a] = std::min(low[a], p[a]);
+                high[a] = std::max(high[a], p[a]);
+            }
+        }
+        tolerance = options.relativeTolerance * norm(high - low);
+        if (!(tolerance > 0.0)) fail("the mesh has no extent (all points coincide)");
+    }
+
+    // The patches of the planes' type; a wedge needs exactly two with faces and no empty faces.
+    void findPlanePatches()
+    {
+        isPlanePatch.assign(mesh.patches.size(), false);
+        for (std::size_t p = 0; p < mesh.patches.size(); ++p) {
+            const Patch& patch = mesh.patches[p];
+            if (patch.type != planeType) continue;
+            isPlanePatch[p] = true;
+            if (patch.faceCount > 0) planePatches.push_back(static_cast<Label>(p));
+        }
+        if (!wedge) return;
         for (const Patch& patch : mesh.patches) {
             if (patch.type == "empty" && patch.faceCount > 0) {
                 fail("patch '" + patch.name + "' is of type empty and has " + str(patch.faceCount)
@@ -282,10 +306,9 @@ PseudoTwoDMesh extractPseudoTwoD(const PolyMesh& mesh, const MeshTopology& topol
         }
     }
 
-    std::vector<std::uint8_t> faceSide(static_cast<std::size_t>(faceCount), NoPlane);
-    Vector3 frontNormal;   // outward normal of the front plane faces (points out of the cells)
-    Vector3 backNormal;
-    if (wedge) {
+    // Wedge: the first wedge patch is the front plane, the second the back; each one plane.
+    void classifyWedgeFaces()
+    {
         for (int side = 0; side < 2; ++side) {
             const Patch& patch = mesh.patches[planePatches[side]];
             Vector3 sum;
@@ -302,7 +325,11 @@ PseudoTwoDMesh extractPseudoTwoD(const PolyMesh& mesh, const MeshTopology& topol
             }
             (side == 0 ? frontNormal : backNormal) = n;
         }
-    } else {
+    }
+
+    // Empty: the plane normal n, oriented so that its largest component is positive.
+    Vector3 emptyPlaneNormal() const
+    {
         // One or two empty patches hold both planes: split the faces by the direction of
         // their outward normal along the mean plane normal. The reference direction is the
         // dominant one of the area-weighted normals (so that a few wrong faces in an empty
@@ -325,6 +352,13 @@ PseudoTwoDMesh extractPseudoTwoD(const PolyMesh& mesh, const MeshTopology& topol
             if (std::abs(n[a]) > std::abs(n[largest])) largest = a;
         }
         if (n[largest] < 0.0) n = -n;
+        return n;
+    }
+
+    // Empty: each face of the empty patches on the front (along −n) or back (along n) plane.
+    void classifyEmptyFaces()
+    {
+        const Vector3 n = emptyPlaneNormal();
         Label frontFaces = 0, backFaces = 0;
         for (Label p : planePatches) {
             const Patch& patch = mesh.patches[p];
@@ -351,40 +385,48 @@ PseudoTwoDMesh extractPseudoTwoD(const PolyMesh& mesh, const MeshTopology& topol
         backNormal = n;
     }
 
-    // --- Every cell: exactly one face on each plane (one layer of cells).
-    result.frontFaceOfCell.assign(static_cast<std::size_t>(cellCount), -1);
-    result.backFaceOfCell.assign(static_cast<std::size_t>(cellCount), -1);
-    for (Label c = 0; c < cellCount; ++c) {
-        Label front = 0, back = 0;
-        for (Label f : topology.facesOf(c)) {
-            if (faceSide[f] == FrontPlane) {
-                ++front;
-                result.frontFaceOfCell[c] = f;
-            } else if (faceSide[f] == BackPlane) {
-                ++back;
-                result.backFaceOfCell[c] = f;
+    // Every cell: exactly one face on each plane (one layer of cells).
+    void findPlaneFacesOfCells()
+    {
+        result.frontFaceOfCell.assign(static_cast<std::size_t>(cellCount), -1);
+        result.backFaceOfCell.assign(static_cast<std::size_t>(cellCount), -1);
+        for (Label c = 0; c < cellCount; ++c) {
+            Label front = 0, back = 0;
+            for (Label f : topology.facesOf(c)) {
+                if (faceSide[f] == FrontPlane) {
+                    ++front;
+                    result.frontFaceOfCell[c] = f;
+                } else if (faceSide[f] == BackPlane) {
+                    ++back;
+                    result.backFaceOfCell[c] = f;
+                }
             }
-        }
-        if (front + back != 2) {
-            fail("cell " + str(c) + " has " + str(front + back) + (front + back == 1 ? " face" : " faces") + " on " + planeType
-                 + " patches; expected exactly 2, one on each plane (the mesh must be one layer of cells)");
-        }
-        if (front != 1) {
-            fail("cell " + str(c) + " has both of its " + planeType + "-patch faces on the "
-                 + (front == 2 ? "front" : "back") + " plane; expected one face on each plane");
+            if (front + back != 2) {
+                fail("cell " + str(c) + " has " + str(front + back) + (front + back == 1 ? " face" : " faces") + " on " + planeType
+                     + " patches; expected exactly 2, one on each plane (the mesh must be one layer of cells)");
+            }
+            if (front != 1) {
+                fail("cell " + str(c) + " has both of its " + planeType + "-patch faces on the "
+                     + (front == 2 ? "front" : "back") + " plane; expected one face on each plane");
+            }
         }
     }
 
-    // --- Points: which plane(s) they lie on; planarity of each plane.
-    std::vector<std::uint8_t> pointSide(static_cast<std::size_t>(pointCount), NoPlane);
-    std::vector<bool> used(static_cast<std::size_t>(pointCount), false);
-    for (Label f = 0; f < faceCount; ++f) {
-        for (Label p : mesh.face(f)) {
-            pointSide[p] |= faceSide[f];
-            used[p] = true;
+    // Points: which plane(s) they lie on, and which points any face uses.
+    void classifyPoints()
+    {
+        pointSide.assign(static_cast<std::size_t>(pointCount), NoPlane);
+        used.assign(static_cast<std::size_t>(pointCount), false);
+        for (Label f = 0; f < faceCount; ++f) {
+            for (Label p : mesh.face(f)) {
+                pointSide[p] |= faceSide[f];
+                used[p] = true;
+            }
         }
     }
-    double frontLevel = 0.0, backLevel = 0.0;
+
+    // The mean level of each plane along its normal, and the planarity of each plane.
+    void measurePlaneLevels()
     {
         Label frontCount = 0, backCount = 0;
         for (Label p = 0; p < pointCount; ++p) {
@@ -413,29 +455,31 @@ PseudoTwoDMesh extractPseudoTwoD(const PolyMesh& mesh, const MeshTopology& topol
             }
         }
     }
-    if (!wedge && !(-frontLevel < backLevel - tolerance)) {
-        fail("the front and back empty planes are not separated: the front plane lies at " + str(-frontLevel)
-             + " and the back plane at " + str(backLevel) + " along " + str(backNormal));
-    }
-    for (Label p = 0; p < pointCount; ++p) {
-        if (!used[p]) continue;
-        if (pointSide[p] == NoPlane) {
-            fail("point " + str(p) + " " + str(mesh.points[p]) + " lies on neither " + planeType
-                 + " plane; a pseudo-2D mesh has all its points on the two planes (one layer of cells)");
+
+    // Empty planes apart; every used point on a plane, and (empty) on only one.
+    void checkPointsOnPlanes() const
+    {
+        if (!wedge && !(-frontLevel < backLevel - tolerance)) {
+            fail("the front and back empty planes are not separated: the front plane lies at " + str(-frontLevel)
+                 + " and the back plane at " + str(backLevel) + " along " + str(backNormal));
         }
-        if (pointSide[p] == BothPlanes && !wedge) {
-            fail("point " + str(p) + " " + str(mesh.points[p])
-                 + " is used by faces on both empty planes; the front and back planes must have distinct points");
+        for (Label p = 0; p < pointCount; ++p) {
+            if (!used[p]) continue;
+            if (pointSide[p] == NoPlane) {
+                fail("point " + str(p) + " " + str(mesh.points[p]) + " lies on neither " + planeType
+                     + " plane; a pseudo-2D mesh has all its points on the two planes (one layer of cells)");
+            }
+            if (pointSide[p] == BothPlanes && !wedge) {
+                fail("point " + str(p) + " " + str(mesh.points[p])
+                     + " is used by faces on both empty planes; the front and back planes must have distinct points");
+            }
         }
     }
 
-    // --- Twins, from the side faces: each joins a front edge (a, b) to its twin (b', a').
-    std::vector<Label>& twin = result.twinOfPoint;
-    twin.assign(static_cast<std::size_t>(pointCount), -1);
-    for (Label p = 0; p < pointCount; ++p) {
-        if (pointSide[p] == BothPlanes) twin[p] = p;   // on the wedge axis
-    }
-    auto link = [&](Label front, Label back, Label f) {
+    // Records front and back as twins (found on face f); each point has exactly one twin.
+    void link(Label front, Label back, Label f)
+    {
+        std::vector<Label>& twin = result.twinOfPoint;
         for (auto [from, to] : {std::pair{front, back}, std::pair{back, front}}) {
             if (twin[from] == -1) {
                 twin[from] = to;
@@ -445,9 +489,11 @@ PseudoTwoDMesh extractPseudoTwoD(const PolyMesh& mesh, const MeshTopology& topol
                      + faceDescription(mesh, f) + "); expected exactly one twin");
             }
         }
-    };
-    for (Label f = 0; f < faceCount; ++f) {
-        if (faceSide[f] != NoPlane) continue;
+    }
+
+    // Side face f: checks it joins a front edge to a back edge and links the twins it joins.
+    void linkSideFace(Label f)
+    {
         const auto face = mesh.face(f);
         const std::size_t n = face.size();
         int frontCount = 0, backCount = 0;
@@ -470,16 +516,31 @@ PseudoTwoDMesh extractPseudoTwoD(const PolyMesh& mesh, const MeshTopology& topol
             if (pointSide[p] == BackPlane && pointSide[q] == FrontPlane) link(q, p, f);
         }
     }
-    for (Label p = 0; p < pointCount; ++p) {
-        if (used[p] && twin[p] == -1) {
-            fail("point " + str(p) + " " + str(mesh.points[p]) + " on the "
-                 + (pointSide[p] == FrontPlane ? "front" : "back")
-                 + " plane has no twin on the other plane: no side face joins it to the other plane");
+
+    // Twins, from the side faces: each joins a front edge (a, b) to its twin (b', a').
+    void findTwins()
+    {
+        std::vector<Label>& twin = result.twinOfPoint;
+        twin.assign(static_cast<std::size_t>(pointCount), -1);
+        for (Label p = 0; p < pointCount; ++p) {
+            if (pointSide[p] == BothPlanes) twin[p] = p;   // on the wedge axis
+        }
+        for (Label f = 0; f < faceCount; ++f) {
+            if (faceSide[f] != NoPlane) continue;
+            linkSideFace(f);
+        }
+        for (Label p = 0; p < pointCount; ++p) {
+            if (used[p] && twin[p] == -1) {
+                fail("point " + str(p) + " " + str(mesh.points[p]) + " on the "
+                     + (pointSide[p] == FrontPlane ? "front" : "back")
+                     + " plane has no twin on the other plane: no side face joins it to the other plane");
+            }
         }
     }
 
-    // --- Wedge rotation: R takes the front plane's outward normal to minus the back's.
-    if (wedge) {
+    // Wedge rotation: R takes the front plane's outward normal to minus the back's.
+    void findWedgeRotation()
+    {
         const Vector3 axisVector = cross(frontNormal, -backNormal);
         if (norm(axisVector) < 1e-12) {
             fail("the two wedge patches are parallel (normals " + str(frontNormal) + " and " + str(backNormal)
@@ -498,6 +559,13 @@ PseudoTwoDMesh extractPseudoTwoD(const PolyMesh& mesh, const MeshTopology& topol
             // Row `row` of R = R^T applied to e_row (Rodrigues' formula with angle −θ).
             result.frontToBackRotation[row] = c * unit - s * cross(k, unit) + (1.0 - c) * dot(k, unit) * k;
         }
+        checkWedgeTwins(k);
+    }
+
+    // Wedge: every back twin is its front point rotated by R about the axis (within 10 tolerances).
+    void checkWedgeTwins(const Vector3& k) const
+    {
+        const std::vector<Label>& twin = result.twinOfPoint;
         for (Label p = 0; p < pointCount; ++p) {
             if (pointSide[p] != FrontPlane || !used[p]) continue;
             const Vector3 expected =
@@ -512,53 +580,76 @@ PseudoTwoDMesh extractPseudoTwoD(const PolyMesh& mesh, const MeshTopology& topol
         }
     }
 
-    // --- Frame and nodes: one node per front-plane point, in point order.
-    result.frame = wedge ? PlaneFrame::fromNormal(snapToAxis(-frontNormal), result.wedgeAxis)
-                         : PlaneFrame::fromNormal(backNormal);
-    result.nodeOfPoint.assign(static_cast<std::size_t>(pointCount), -1);
-    PlanarMesh& planar = result.planar;
-    for (Label p = 0; p < pointCount; ++p) {
-        if (!used[p] || !(pointSide[p] & FrontPlane)) continue;
-        result.nodeOfPoint[p] = static_cast<Label>(result.frontPointOfNode.size());
-        result.frontPointOfNode.push_back(p);
-        result.backPointOfNode.push_back(twin[p]);
-        planar.points.push_back(result.frame.toLocal(mesh.points[p]));
-    }
-    for (Label p = 0; p < pointCount; ++p) {
-        if (used[p] && pointSide[p] == BackPlane) result.nodeOfPoint[p] = result.nodeOfPoint[twin[p]];
+    // Frame and nodes: one node per front-plane point, in point order.
+    void numberNodes()
+    {
+        const std::vector<Label>& twin = result.twinOfPoint;
+        result.frame = wedge ? PlaneFrame::fromNormal(snapToAxis(-frontNormal), result.wedgeAxis)
+                             : PlaneFrame::fromNormal(backNormal);
+        result.nodeOfPoint.assign(static_cast<std::size_t>(pointCount), -1);
+        PlanarMesh& planar = result.planar;
+        for (Label p = 0; p < pointCount; ++p) {
+            if (!used[p] || !(pointSide[p] & FrontPlane)) continue;
+            result.nodeOfPoint[p] = static_cast<Label>(result.frontPointOfNode.size());
+            result.frontPointOfNode.push_back(p);
+            result.backPointOfNode.push_back(twin[p]);
+            planar.points.push_back(result.frame.toLocal(mesh.points[p]));
+        }
+        for (Label p = 0; p < pointCount; ++p) {
+            if (used[p] && pointSide[p] == BackPlane) result.nodeOfPoint[p] = result.nodeOfPoint[twin[p]];
+        }
     }
 
-    // --- Cells: the front face reversed is counter-clockwise seen from the frame normal.
-    planar.cellOffsets.assign(1, 0);
-    planar.cellOffsets.reserve(static_cast<std::size_t>(cellCount) + 1);
-    planar.cellPoints.reserve(mesh.facePoints.size() / 4 + 16);
-    for (Label c = 0; c < cellCount; ++c) {
-        const auto front = mesh.face(result.frontFaceOfCell[c]);
-        const auto back = mesh.face(result.backFaceOfCell[c]);
-        bool twinFaces = front.size() == back.size();
-        for (std::size_t i = 0; i < back.size() && twinFaces; ++i) {
-            twinFaces = std::find(front.begin(), front.end(), twin[back[i]]) != front.end();
+    // Cells: the front face reversed is counter-clockwise seen from the frame normal.
+    void buildCells()
+    {
+        const std::vector<Label>& twin = result.twinOfPoint;
+        PlanarMesh& planar = result.planar;
+        planar.cellOffsets.assign(1, 0);
+        planar.cellOffsets.reserve(static_cast<std::size_t>(cellCount) + 1);
+        planar.cellPoints.reserve(mesh.facePoints.size() / 4 + 16);
+        for (Label c = 0; c < cellCount; ++c) {
+            const auto front = mesh.face(result.frontFaceOfCell[c]);
+            const auto back = mesh.face(result.backFaceOfCell[c]);
+            bool twinFaces = front.size() == back.size();
+            for (std::size_t i = 0; i < back.size() && twinFaces; ++i) {
+                twinFaces = std::find(front.begin(), front.end(), twin[back[i]]) != front.end();
+            }
+            if (!twinFaces) {
+                fail("cell " + str(c) + ": its back-plane face " + str(result.backFaceOfCell[c])
+                     + " is not the twin of its front-plane face " + str(result.frontFaceOfCell[c]) + " (" + str(Label(front.size()))
+                     + " and " + str(Label(back.size())) + " points)");
+            }
+            for (auto it = front.rbegin(); it != front.rend(); ++it) planar.cellPoints.push_back(result.nodeOfPoint[*it]);
+            planar.cellOffsets.push_back(static_cast<Label>(planar.cellPoints.size()));
         }
-        if (!twinFaces) {
-            fail("cell " + str(c) + ": its back-plane face " + str(result.backFaceOfCell[c])
-                 + " is not the twin of its front-plane face " + str(result.frontFaceOfCell[c]) + " (" + str(Label(front.size()))
-                 + " and " + str(Label(back.size())) + " points)");
-        }
-        for (auto it = front.rbegin(); it != front.rend(); ++it) planar.cellPoints.push_back(result.nodeOfPoint[*it]);
-        planar.cellOffsets.push_back(static_cast<Label>(planar.cellPoints.size()));
     }
 
-    // --- Edges from the side faces, in face order (internal first, then patch by patch).
-    std::vector<bool> covered(planar.cellPoints.size(), false);   // per polygon edge (cell, local index)
     // Local index k in cell c of the edge from node a to node b, or -1.
-    auto polygonEdge = [&](Label c, Label a, Label b) -> Label {
-        const auto polygon = planar.cell(c);
+    Label polygonEdge(Label c, Label a, Label b) const
+    {
+        const auto polygon = result.planar.cell(c);
         for (std::size_t k = 0; k < polygon.size(); ++k) {
             if (polygon[k] == a && polygon[(k + 1) % polygon.size()] == b) return static_cast<Label>(k);
         }
         return -1;
-    };
-    auto addEdge = [&](Label f) {
+    }
+
+    // Marks edge `local` of cell c (nodes a, b) as covered by side face f; twice is an error.
+    void cover(Label c, Label local, Label a, Label b, Label f)
+    {
+        const std::size_t index = static_cast<std::size_t>(result.planar.cellOffsets[c] + local);
+        if (covered[index]) {
+            fail("cell " + str(c) + " has two side faces on its edge between points " + str(result.frontPointOfNode[a])
+                 + " and " + str(result.frontPointOfNode[b]) + " (the second is " + faceDescription(mesh, f) + ")");
+        }
+        covered[index] = true;
+    }
+
+    // The 2D edge of side face f: its front nodes, in its owner's (and neighbour's) polygon.
+    void addEdge(Label f)
+    {
+        PlanarMesh& planar = result.planar;
         const auto face = mesh.face(f);
         Label a = -1, b = -1;
         for (Label p : face) {
@@ -574,15 +665,7 @@ PseudoTwoDMesh extractPseudoTwoD(const PolyMesh& mesh, const MeshTopology& topol
             fail(faceDescription(mesh, f) + " joins front-plane points " + str(result.frontPointOfNode[a]) + " and "
                  + str(result.frontPointOfNode[b]) + ", which are not an edge of its owner cell " + str(owner));
         }
-        auto cover = [&](Label c, Label local) {
-            const std::size_t index = static_cast<std::size_t>(planar.cellOffsets[c] + local);
-            if (covered[index]) {
-                fail("cell " + str(c) + " has two side faces on its edge between points " + str(result.frontPointOfNode[a])
-                     + " and " + str(result.frontPointOfNode[b]) + " (the second is " + faceDescription(mesh, f) + ")");
-            }
-            covered[index] = true;
-        };
-        cover(owner, k);
+        cover(owner, k, a, b, f);
         if (f < mesh.internalFaceCount()) {
             const Label neighbour = mesh.neighbour[f];
             const Label kn = polygonEdge(neighbour, b, a);
@@ -590,57 +673,95 @@ PseudoTwoDMesh extractPseudoTwoD(const PolyMesh& mesh, const MeshTopology& topol
                 fail(faceDescription(mesh, f) + " joins cells " + str(owner) + " and " + str(neighbour)
                      + ", but its front edge is not an edge of cell " + str(neighbour) + " in the opposite direction");
             }
-            cover(neighbour, kn);
+            cover(neighbour, kn, a, b, f);
             planar.edgeNeighbour.push_back(neighbour);
         }
         planar.edgePoints.push_back(a);
         planar.edgePoints.push_back(b);
         planar.edgeOwner.push_back(owner);
         result.faceOfEdge.push_back(f);
-    };
-    for (Label f = 0; f < mesh.internalFaceCount(); ++f) addEdge(f);
-    Label axisPatch = -1;
-    Label zeroFaceEmptyPatches = 0;
-    for (std::size_t p = 0; p < mesh.patches.size(); ++p) {
-        const Patch& patch = mesh.patches[p];
-        if (isPlanePatch[p]) continue;
-        if (wedge && patch.type == "empty") {   // no faces (checked above): the axis
-            ++zeroFaceEmptyPatches;
-            axisPatch = static_cast<Label>(p);
-            continue;
-        }
-        PlanarPatch planarPatch{patch.name, patch.type, planar.edgeCount(), 0, static_cast<Label>(p)};
-        for (Label f = patch.startFace; f < patch.startFace + patch.faceCount; ++f) addEdge(f);
-        planarPatch.edgeCount = planar.edgeCount() - planarPatch.startEdge;
-        planar.patches.push_back(std::move(planarPatch));
     }
 
-    // --- Polygon edges without a side face: allowed only on a wedge axis (collapsed faces).
-    PlanarPatch axis{"axis", "empty", planar.edgeCount(), 0, -1};
-    if (zeroFaceEmptyPatches == 1) {
-        axis.name = mesh.patches[axisPatch].name;
-        axis.polyMeshPatch = axisPatch;
-    }
-    for (Label c = 0; c < cellCount; ++c) {
-        const auto polygon = planar.cell(c);
-        for (std::size_t k = 0; k < polygon.size(); ++k) {
-            if (covered[static_cast<std::size_t>(planar.cellOffsets[c]) + k]) continue;
-            const Label a = polygon[k], b = polygon[(k + 1) % polygon.size()];
-            const bool onAxis = result.frontPointOfNode[a] == result.backPointOfNode[a]
-                                && result.frontPointOfNode[b] == result.backPointOfNode[b];
-            if (!onAxis) {
-                fail("the edge between points " + str(result.frontPointOfNode[a]) + " and "
-                     + str(result.frontPointOfNode[b]) + " of cell " + str(c)
-                     + " on the front plane has no side face joining it to the back plane");
+    // Edges from the side faces, in face order (internal first, then patch by patch).
+    void addSideFaceEdges()
+    {
+        PlanarMesh& planar = result.planar;
+        covered.assign(planar.cellPoints.size(), false);
+        for (Label f = 0; f < mesh.internalFaceCount(); ++f) addEdge(f);
+        for (std::size_t p = 0; p < mesh.patches.size(); ++p) {
+            const Patch& patch = mesh.patches[p];
+            if (isPlanePatch[p]) continue;
+            if (wedge && patch.type == "empty") {   // no faces (checked above): the axis
+                ++zeroFaceEmptyPatches;
+                axisPatch = static_cast<Label>(p);
+                continue;
             }
-            planar.edgePoints.push_back(a);
-            planar.edgePoints.push_back(b);
-            planar.edgeOwner.push_back(c);
-            result.faceOfEdge.push_back(-1);
+            PlanarPatch planarPatch{patch.name, patch.type, planar.edgeCount(), 0, static_cast<Label>(p)};
+            for (Label f = patch.startFace; f < patch.startFace + patch.faceCount; ++f) addEdge(f);
+            planarPatch.edgeCount = planar.edgeCount() - planarPatch.startEdge;
+            planar.patches.push_back(std::move(planarPatch));
         }
     }
-    axis.edgeCount = planar.edgeCount() - axis.startEdge;
-    if (axis.edgeCount > 0 || zeroFaceEmptyPatches > 0) planar.patches.push_back(std::move(axis));
+
+    // Polygon edges without a side face: allowed only on a wedge axis (collapsed faces).
+    void addAxisEdges()
+    {
+        PlanarMesh& planar = result.planar;
+        PlanarPatch axis{"axis", "empty", planar.edgeCount(), 0, -1};
+        if (zeroFaceEmptyPatches == 1) {
+            axis.name = mesh.patches[axisPatch].name;
+            axis.polyMeshPatch = axisPatch;
+        }
+        for (Label c = 0; c < cellCount; ++c) {
+            const auto polygon = planar.cell(c);
+            for (std::size_t k = 0; k < polygon.size(); ++k) {
+                if (covered[static_cast<std::size_t>(planar.cellOffsets[c]) + k]) continue;
+                const Label a = polygon[k], b = polygon[(k + 1) % polygon.size()];
+                const bool onAxis = result.frontPointOfNode[a] == result.backPointOfNode[a]
+                                    && result.frontPointOfNode[b] == result.backPointOfNode[b];
+                if (!onAxis) {
+                    fail("the edge between points " + str(result.frontPointOfNode[a]) + " and "
+                         + str(result.frontPointOfNode[b]) + " of cell " + str(c)
+                         + " on the front plane has no side face joining it to the back plane");
+                }
+                planar.edgePoints.push_back(a);
+                planar.edgePoints.push_back(b);
+                planar.edgeOwner.push_back(c);
+                result.faceOfEdge.push_back(-1);
+            }
+        }
+        axis.edgeCount = planar.edgeCount() - axis.startEdge;
+        if (axis.edgeCount > 0 || zeroFaceEmptyPatches > 0) planar.patches.push_back(std::move(axis));
+    }
+};
+
+} // namespace
+
+PseudoTwoDMesh extractPseudoTwoD(const PolyMesh& mesh, const MeshTopology& topology, const PseudoTwoDOptions& options)
+{
+    PseudoTwoDMesh result;
+    result.kind = detectPseudoTwoD(mesh);
+    if (result.kind == PseudoTwoDKind::None) {
+        fail("the mesh has no patch of type empty or wedge with faces, so it is not a pseudo-2D case "
+             "(one layer of cells between two empty or wedge planes)");
+    }
+    Extraction extraction(mesh, topology, result);
+    extraction.measureTolerance(options);
+    // Plane patches and the front / back side of every plane face.
+    extraction.findPlanePatches();
+    extraction.faceSide.assign(static_cast<std::size_t>(mesh.faceCount()), NoPlane);
+    if (extraction.wedge) extraction.classifyWedgeFaces();
+    else extraction.classifyEmptyFaces();
+    extraction.findPlaneFacesOfCells();
+    extraction.classifyPoints();
+    extraction.measurePlaneLevels();
+    extraction.checkPointsOnPlanes();
+    extraction.findTwins();
+    if (extraction.wedge) extraction.findWedgeRotation();
+    extraction.numberNodes();
+    extraction.buildCells();
+    extraction.addSideFaceEdges();
+    extraction.addAxisEdges();
     return result;
 }
 

@@ -98,6 +98,97 @@ QualityReport QualityEvaluator::evaluate(std::span<const Vector3> points)
     return report;
 }
 
+namespace {
+
+// 2D: each cell's q (triangles) or F_shape (quadrilaterals) and whether it is inverted, by
+// threads (each writes its own slots), from the front-plane points in the plane's frame.
+void evaluatePlanarCells(const PseudoTwoDMesh& twoD, std::span<const Vector3> points, std::vector<Vector3>& nodePositions,
+                         std::vector<double>& cellValues, std::vector<std::uint8_t>& cellInverted)
+{
+    const PlanarMesh& planar = twoD.planar;
+    const Label nodes = twoD.nodeCount();
+    nodePositions.resize(static_cast<std::size_t>(nodes));
+#pragma omp parallel for schedule(static) if (worthThreading(static_cast<std::size_t>(nodes)))
+    for (Label n = 0; n < nodes; ++n) nodePositions[n] = twoD.frame.toLocal(points[twoD.frontPointOfNode[n]]);
+    const std::span<const Vector3> positions = nodePositions;
+    const Label cellCount = planar.cellCount();
+    cellValues.resize(static_cast<std::size_t>(cellCount));
+    cellInverted.resize(static_cast<std::size_t>(cellCount));
+#pragma omp parallel for schedule(static) if (worthThreading(static_cast<std::size_t>(cellCount)))
+    for (Label c = 0; c < cellCount; ++c) {
+        const auto polygon = planar.cell(c);
+        cellInverted[c] = isInvertedPolygon(polygonSignedArea(polygon, positions));
+        if (polygon.size() == 3) {
+            cellValues[c] = triangleMeanRatio(positions[polygon[0]], positions[polygon[1]], positions[polygon[2]]);
+        } else if (polygon.size() == 4) {
+            cellValues[c] = quadrilateralShape(positions[polygon[0]], positions[polygon[1]], positions[polygon[2]],
+                                               positions[polygon[3]]);
+        }
+    }
+}
+
+// 2D: the inverted cells and the worst shape, in cell order as computeThesisQuality2D takes them.
+void summarisePlanarCells(const PlanarMesh& planar, const std::vector<double>& cellValues,
+                          const std::vector<std::uint8_t>& cellInverted, StepQuality& quality)
+{
+    // StatisticsAccumulator's minimum of each shape, then the smaller of the two.
+    StatisticsAccumulator triangles;
+    StatisticsAccumulator quadrilaterals;
+    for (Label c = 0; c < planar.cellCount(); ++c) {
+        if (cellInverted[c]) ++quality.invertedCellCount;
+        const std::size_t size = planar.cell(c).size();
+        if (size == 3) triangles.add(cellValues[c]);
+        else if (size == 4) quadrilaterals.add(cellValues[c]);
+    }
+    const QualityStatistics t = triangles.result();
+    const QualityStatistics q = quadrilaterals.result();
+    double worst = std::numeric_limits<double>::quiet_NaN();
+    if (t.count > 0) worst = t.min;
+    if (q.count > 0) worst = std::isnan(worst) ? q.min : std::min(worst, q.min);
+    quality.worstCellQuality = worst;
+}
+
+// 3D: each cell's smallest face pyramid relative to the mean and whether it is inverted, by threads.
+void evaluatePyramidCells(const PolyMesh& mesh, const MeshTopology& topology, const MeshGeometry& geometry,
+                          std::vector<double>& cellValues, std::vector<std::uint8_t>& cellInverted)
+{
+    // The face pyramids of every cell with apex at its centre (ThesisQuality's inverted
+    // cells: a pyramid or the volume <= 0), and their smallest relative to the mean pyramid.
+    const Label cellCount = static_cast<Label>(geometry.cellVolumes.size());
+    cellValues.resize(static_cast<std::size_t>(cellCount));
+    cellInverted.resize(static_cast<std::size_t>(cellCount));
+#pragma omp parallel for schedule(static) if (worthThreading(static_cast<std::size_t>(cellCount)))
+    for (Label c = 0; c < cellCount; ++c) {
+        const Vector3& centre = geometry.cellCentres[c];
+        double smallest = std::numeric_limits<double>::infinity();   // 3 × the smallest pyramid
+        const auto faces = topology.facesOf(c);
+        for (const Label f : faces) {
+            const Vector3& S = geometry.faceAreas[f];
+            const Vector3& fc = geometry.faceCentres[f];
+            smallest = std::min(smallest, tripleFacePyramid(S, fc, centre, mesh.owner[f] == c));
+        }
+        const double volume = geometry.cellVolumes[c];
+        cellInverted[c] = isInvertedCell(volume, smallest);
+        cellValues[c] =
+            std::abs(volume) > 0.0 ? static_cast<double>(faces.size()) * (smallest / 3.0) / std::abs(volume) : 0.0;
+    }
+}
+
+// 3D: the inverted cells and the smallest value, in cell order.
+void summarisePyramidCells(const std::vector<double>& cellValues, const std::vector<std::uint8_t>& cellInverted,
+                           StepQuality& quality)
+{
+    const Label cellCount = static_cast<Label>(cellValues.size());
+    double worst = std::numeric_limits<double>::quiet_NaN();
+    for (Label c = 0; c < cellCount; ++c) {
+        if (cellInverted[c]) ++quality.invertedCellCount;
+        worst = c == 0 ? cellValues[c] : std::min(worst, cellValues[c]);
+    }
+    quality.worstCellQuality = worst;
+}
+
+} // namespace
+
 StepQuality QualityEvaluator::evaluateStep(std::span<const Vector3> points)
 {
     StepQuality quality;
@@ -119,70 +210,12 @@ StepQuality QualityEvaluator::evaluateStep(std::span<const Vector3> points)
     // Per cell by threads (each writes its own slots), then the minima and the count in cell
     // order, as computeThesisQuality2D/3D take them: the same figures for any thread count.
     if (twoD_) {
-        const PlanarMesh& planar = twoD_->planar;
-        const Label nodes = twoD_->nodeCount();
-        nodePositions_.resize(static_cast<std::size_t>(nodes));
-#pragma omp parallel for schedule(static) if (worthThreading(static_cast<std::size_t>(nodes)))
-        for (Label n = 0; n < nodes; ++n) nodePositions_[n] = twoD_->frame.toLocal(points[twoD_->frontPointOfNode[n]]);
-        const std::span<const Vector3> positions = nodePositions_;
-        const Label cellCount = planar.cellCount();
-        cellValues_.resize(static_cast<std::size_t>(cellCount));
-        cellInverted_.resize(static_cast<std::size_t>(cellCount));
-#pragma omp parallel for schedule(static) if (worthThreading(static_cast<std::size_t>(cellCount)))
-        for (Label c = 0; c < cellCount; ++c) {
-            const auto polygon = planar.cell(c);
-            cellInverted_[c] = isInvertedPolygon(polygonSignedArea(polygon, positions));
-            if (polygon.size() == 3) {
-                cellValues_[c] = triangleMeanRatio(positions[polygon[0]], positions[polygon[1]], positions[polygon[2]]);
-            } else if (polygon.size() == 4) {
-                cellValues_[c] = quadrilateralShape(positions[polygon[0]], positions[polygon[1]], positions[polygon[2]],
-                                                    positions[polygon[3]]);
-            }
-        }
-        // StatisticsAccumulator's minimum of each shape, then the smaller of the two.
-        StatisticsAccumulator triangles;
-        StatisticsAccumulator quadrilaterals;
-        for (Label c = 0; c < cellCount; ++c) {
-            if (cellInverted_[c]) ++quality.invertedCellCount;
-            const std::size_t size = planar.cell(c).size();
-            if (size == 3) triangles.add(cellValues_[c]);
-            else if (size == 4) quadrilaterals.add(cellValues_[c]);
-        }
-        const QualityStatistics t = triangles.result();
-        const QualityStatistics q = quadrilaterals.result();
-        double worst = std::numeric_limits<double>::quiet_NaN();
-        if (t.count > 0) worst = t.min;
-        if (q.count > 0) worst = std::isnan(worst) ? q.min : std::min(worst, q.min);
-        quality.worstCellQuality = worst;
+        evaluatePlanarCells(*twoD_, points, nodePositions_, cellValues_, cellInverted_);
+        summarisePlanarCells(twoD_->planar, cellValues_, cellInverted_, quality);
         return quality;
     }
-
-    // 3D: the face pyramids of every cell with apex at its centre (ThesisQuality's inverted
-    // cells: a pyramid or the volume <= 0), and their smallest relative to the mean pyramid.
-    const Label cellCount = static_cast<Label>(geometry_.cellVolumes.size());
-    cellValues_.resize(static_cast<std::size_t>(cellCount));
-    cellInverted_.resize(static_cast<std::size_t>(cellCount));
-#pragma omp parallel for schedule(static) if (worthThreading(static_cast<std::size_t>(cellCount)))
-    for (Label c = 0; c < cellCount; ++c) {
-        const Vector3& centre = geometry_.cellCentres[c];
-        double smallest = std::numeric_limits<double>::infinity();   // 3 × the smallest pyramid
-        const auto faces = topology_.facesOf(c);
-        for (const Label f : faces) {
-            const Vector3& S = geometry_.faceAreas[f];
-            const Vector3& fc = geometry_.faceCentres[f];
-            smallest = std::min(smallest, tripleFacePyramid(S, fc, centre, mesh_.owner[f] == c));
-        }
-        const double volume = geometry_.cellVolumes[c];
-        cellInverted_[c] = isInvertedCell(volume, smallest);
-        cellValues_[c] =
-            std::abs(volume) > 0.0 ? static_cast<double>(faces.size()) * (smallest / 3.0) / std::abs(volume) : 0.0;
-    }
-    double worst = std::numeric_limits<double>::quiet_NaN();
-    for (Label c = 0; c < cellCount; ++c) {
-        if (cellInverted_[c]) ++quality.invertedCellCount;
-        worst = c == 0 ? cellValues_[c] : std::min(worst, cellValues_[c]);
-    }
-    quality.worstCellQuality = worst;
+    evaluatePyramidCells(mesh_, topology_, geometry_, cellValues_, cellInverted_);
+    summarisePyramidCells(cellValues_, cellInverted_, quality);
     return quality;
 }
 
@@ -240,12 +273,9 @@ void appendStatisticsRow(std::ostringstream& os, const std::string& name, const 
        << rightAligned(number(s.min), 13) << rightAligned(number(s.max), 13) << '\n';
 }
 
-} // namespace
-
-std::string formatQualityReport(const QualityReport& r)
+// Mesh stats and the number of cells of each shape.
+void appendMeshStats(std::ostringstream& os, const QualityReport& r)
 {
-    const CheckMeshQuality& q = r.checkMesh;
-    std::ostringstream os;
     os << "Mesh stats\n"
        << "    points:           " << r.pointCount << '\n'
        << "    faces:            " << r.faceCount << '\n'
@@ -263,7 +293,11 @@ std::string formatQualityReport(const QualityReport& r)
        << "    pyramids:      " << r.cellShapeCounts[static_cast<int>(CellShape::Pyramid)] << '\n'
        << "    tetrahedra:    " << r.cellShapeCounts[static_cast<int>(CellShape::Tetrahedron)] << '\n'
        << "    polyhedra:     " << r.cellShapeCounts[static_cast<int>(CellShape::Polyhedron)] << "\n\n";
+}
 
+// Whether the mesh is 2D (and so where the thesis metrics are measured).
+void appendDimension(std::ostringstream& os, const QualityReport& r)
+{
     if (r.thesis.dimension == 2) {
         os << "Mesh is 2D: one layer of cells between " << pseudoTwoDName(r.pseudoTwoD)
            << " planes; thesis metrics on the 2D mesh.\n\n";
@@ -274,7 +308,11 @@ std::string formatQualityReport(const QualityReport& r)
     } else {
         os << "Mesh is 3D.\n\n";
     }
+}
 
+// checkMesh's geometry: bounding box, directions, closedness, face areas and cell volumes.
+void appendGeometrySizes(std::ostringstream& os, const CheckMeshQuality& q)
+{
     os << "Checking geometry (checkMesh's definitions)...\n"
        << "    Overall domain bounding box " << vector(q.boundingBoxMin) << " " << vector(q.boundingBoxMax) << '\n'
        << "    Mesh has " << q.geometricDimensionCount() << " geometric (non-empty/wedge) directions "
@@ -312,6 +350,11 @@ std::string formatQualityReport(const QualityReport& r)
         os << "    Min volume = " << number(q.minCellVolume) << ". Max volume = " << number(q.maxCellVolume)
            << ".  Total volume = " << number(q.totalVolume) << ".  Cell volumes OK.\n";
     }
+}
+
+// checkMesh's geometry: non-orthogonality, face pyramids, skewness, weights and volume ratios.
+void appendGeometryShapes(std::ostringstream& os, const CheckMeshQuality& q)
+{
     if (q.internalFaceCount > 0) {
         os << "    Mesh non-orthogonality Max: " << number(q.maxNonOrthogonality)
            << " average: " << number(q.averageNonOrthogonality) << '\n';
@@ -342,8 +385,11 @@ std::string formatQualityReport(const QualityReport& r)
            << "    Face volume ratio : minimum: " << number(q.minVolumeRatio)
            << " average: " << number(q.averageVolumeRatio) << '\n';
     }
+}
 
-    const ThesisQuality& t = r.thesis;
+// The thesis' metrics table and the inverted cells.
+void appendThesisMetrics(std::ostringstream& os, const ThesisQuality& t)
+{
     os << "\nThesis quality metrics (" << t.dimension << "D, thesis section 2.7):\n"
        << "    " << padded("metric", 28) << rightAligned("count", 9) << rightAligned("mean", 13)
        << rightAligned("std", 13) << rightAligned("min", 13) << rightAligned("max", 13) << '\n';
@@ -361,7 +407,12 @@ std::string formatQualityReport(const QualityReport& r)
     } else {
         os << "    Inverted cells: 0\n";
     }
+}
 
+// The last line: failed checks, inverted cells or OK.
+void appendVerdict(std::ostringstream& os, const QualityReport& r)
+{
+    const CheckMeshQuality& q = r.checkMesh;
     const int failed = q.failedCheckCount();
     os << '\n';
     if (failed > 0) {
@@ -371,6 +422,19 @@ std::string formatQualityReport(const QualityReport& r)
     } else {
         os << "Mesh OK.\n";
     }
+}
+
+} // namespace
+
+std::string formatQualityReport(const QualityReport& r)
+{
+    std::ostringstream os;
+    appendMeshStats(os, r);
+    appendDimension(os, r);
+    appendGeometrySizes(os, r.checkMesh);
+    appendGeometryShapes(os, r.checkMesh);
+    appendThesisMetrics(os, r.thesis);
+    appendVerdict(os, r);
     return os.str();
 }
 
@@ -425,15 +489,10 @@ std::string jsonString(const std::string& text)
     return out + "\"";
 }
 
-} // namespace
-
-std::string qualityReportJson(const QualityReport& r)
+// The JSON members before "checkMesh": the mesh's sizes, cell types and dimension.
+void appendJsonMesh(std::ostringstream& os, const QualityReport& r)
 {
-    const CheckMeshQuality& q = r.checkMesh;
-    const ThesisQuality& t = r.thesis;
-    std::ostringstream os;
-    os << "{\n"
-       << "  \"mesh\": {\"points\": " << r.pointCount << ", \"faces\": " << r.faceCount
+    os << "  \"mesh\": {\"points\": " << r.pointCount << ", \"faces\": " << r.faceCount
        << ", \"internalFaces\": " << r.internalFaceCount << ", \"cells\": " << r.cellCount
        << ", \"facesPerCell\": " << jsonNumber(r.facesPerCell) << ", \"boundaryPatches\": " << r.patchCount
        << ", \"pointZones\": " << r.pointZoneCount << ", \"faceZones\": " << r.faceZoneCount
@@ -443,11 +502,16 @@ std::string qualityReportJson(const QualityReport& r)
        << ", \"pyramids\": " << r.cellShapeCounts[static_cast<int>(CellShape::Pyramid)]
        << ", \"tetrahedra\": " << r.cellShapeCounts[static_cast<int>(CellShape::Tetrahedron)]
        << ", \"polyhedra\": " << r.cellShapeCounts[static_cast<int>(CellShape::Polyhedron)] << "},\n"
-       << "  \"dimension\": " << t.dimension << ",\n"
+       << "  \"dimension\": " << r.thesis.dimension << ",\n"
        << "  \"pseudoTwoD\": " << jsonString(pseudoTwoDName(r.pseudoTwoD)) << ",\n";
     if (!r.twoDExtractionProblem.empty()) {
         os << "  \"twoDExtractionProblem\": " << jsonString(r.twoDExtractionProblem) << ",\n";
     }
+}
+
+// The JSON "checkMesh" object.
+void appendJsonCheckMesh(std::ostringstream& os, const CheckMeshQuality& q)
+{
     os << "  \"checkMesh\": {\n"
        << "    \"boundingBox\": {\"min\": " << jsonVector(q.boundingBoxMin) << ", \"max\": " << jsonVector(q.boundingBoxMax)
        << "},\n"
@@ -477,8 +541,13 @@ std::string qualityReportJson(const QualityReport& r)
        << "    \"minVolumeRatio\": " << jsonNumber(q.minVolumeRatio) << ",\n"
        << "    \"averageVolumeRatio\": " << jsonNumber(q.averageVolumeRatio) << ",\n"
        << "    \"failedChecks\": " << q.failedCheckCount() << "\n"
-       << "  },\n"
-       << "  \"thesis\": {\n"
+       << "  },\n";
+}
+
+// The JSON "thesis" object.
+void appendJsonThesis(std::ostringstream& os, const ThesisQuality& t)
+{
+    os << "  \"thesis\": {\n"
        << "    \"dimension\": " << t.dimension << ",\n"
        << "    \"cells\": " << t.cellCount << ",\n";
     if (t.dimension == 2) {
@@ -489,9 +558,20 @@ std::string qualityReportJson(const QualityReport& r)
     os << "    \"nonOrthogonality\": " << jsonStatistics(t.nonOrthogonality) << ",\n"
        << "    \"skewness\": " << jsonStatistics(t.skewness) << ",\n"
        << "    \"invertedCells\": " << t.invertedCellCount << "\n"
-       << "  },\n"
-       << "  \"invertedCells\": " << t.invertedCellCount << ",\n"
-       << "  \"failedChecks\": " << q.failedCheckCount() << ",\n"
+       << "  },\n";
+}
+
+} // namespace
+
+std::string qualityReportJson(const QualityReport& r)
+{
+    std::ostringstream os;
+    os << "{\n";
+    appendJsonMesh(os, r);
+    appendJsonCheckMesh(os, r.checkMesh);
+    appendJsonThesis(os, r.thesis);
+    os << "  \"invertedCells\": " << r.thesis.invertedCellCount << ",\n"
+       << "  \"failedChecks\": " << r.checkMesh.failedCheckCount() << ",\n"
        << "  \"valid\": " << (r.isValid() ? "true" : "false") << "\n"
        << "}\n";
     return os.str();

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <tuple>
 #include <stdexcept>
 
@@ -261,50 +262,72 @@ std::string UntangleResult::describe(std::span<const Vector3> positions, const S
     return text;
 }
 
-UntangleResult untangle(const SimplexDecomposition& cells, std::span<const Vector3> referencePositions,
-                        std::span<const UntanglePointConstraint> constraints, std::vector<Vector3>& positions,
-                        const InvertedCellTest& isInverted, const UntangleOptions& options)
-{
-    const Label pointCount = static_cast<Label>(positions.size());
-    if (static_cast<Label>(referencePositions.size()) != pointCount || static_cast<Label>(constraints.size()) != pointCount)
-        throw std::invalid_argument("untangle: positions, reference positions and constraints differ in size");
-    UntangleResult result;
-    std::vector<Label> inverted = isInverted(positions);
-    result.initialInverted = static_cast<Label>(inverted.size());
-    if (inverted.empty()) return result;
+namespace {
 
-    const int dimension = cells.dimension;
-    const int cornersPerSimplex = dimension + 1;
-    const Label cornerCount = static_cast<Label>(cells.cornerOffsets.size()) - 1;
-    const Label simplexCount = cells.simplexCount();
-    const Label cellCount = cells.cellCount();
-
+// One untangling: the maps between points, corners, simplices and cells, the targets, the
+// current corner positions, and the points moved so far.
+struct Untangler {
+    const SimplexDecomposition& cells;
+    std::span<const UntanglePointConstraint> constraints;
+    std::vector<Vector3>& positions;
+    const UntangleOptions& options;
+    int dimension;
+    int cornersPerSimplex;
+    Label pointCount;
+    Label cornerCount;
+    Label simplexCount;
+    Label cellCount;
     // Maps: point → corners, corner → simplices, point → cells.
     std::vector<Label> pointCornerOffsets, pointCorners, cornerSimplexOffsets, cornerSimplices, pointCellOffsets,
         pointCells;
-    invert(cells.cornerOffsets, cells.cornerPoints, pointCount, pointCornerOffsets, pointCorners);
+    std::vector<double> target;
+    std::vector<Vector3> corners;
+    std::vector<char> marked;
+    std::vector<Label> localSimplices;
+    std::vector<char> moved;
+
+    // The maps, the targets from the reference positions and the corners of `positions`.
+    Untangler(const SimplexDecomposition& cells, std::span<const Vector3> referencePositions,
+              std::span<const UntanglePointConstraint> constraints, std::vector<Vector3>& positions,
+              const UntangleOptions& options)
+        : cells(cells), constraints(constraints), positions(positions), options(options), dimension(cells.dimension),
+          cornersPerSimplex(dimension + 1), pointCount(static_cast<Label>(positions.size())),
+          cornerCount(static_cast<Label>(cells.cornerOffsets.size()) - 1), simplexCount(cells.simplexCount()),
+          cellCount(cells.cellCount())
     {
-        std::vector<Label> simplexOffsets(static_cast<std::size_t>(simplexCount) + 1);
-        for (Label s = 0; s <= simplexCount; ++s) simplexOffsets[s] = s * cornersPerSimplex;
-        invert(simplexOffsets, cells.simplexCorners, cornerCount, cornerSimplexOffsets, cornerSimplices);
+        invert(cells.cornerOffsets, cells.cornerPoints, pointCount, pointCornerOffsets, pointCorners);
+        {
+            std::vector<Label> simplexOffsets(static_cast<std::size_t>(simplexCount) + 1);
+            for (Label s = 0; s <= simplexCount; ++s) simplexOffsets[s] = s * cornersPerSimplex;
+            invert(simplexOffsets, cells.simplexCorners, cornerCount, cornerSimplexOffsets, cornerSimplices);
+        }
+        invert(cells.cellOffsets, cells.cellPoints, pointCount, pointCellOffsets, pointCells);
+
+        // Targets α_s from the reference mesh. A simplex that is not positive there (a concave
+        // quadrilateral corner, a warped face's tetrahedron in the user's own mesh) is not asked
+        // to become positive: target 0 leaves it out of the objective.
+        target = simplexVolumes(cells, referencePositions);
+        for (double& value : target) value = value > 0.0 ? options.targetFraction * value : 0.0;
+
+        corners.resize(static_cast<std::size_t>(cornerCount));
+        for (Label c = 0; c < cornerCount; ++c) corners[c] = cornerPosition(cells, positions, c);
+        marked.assign(static_cast<std::size_t>(simplexCount), 0);
+        moved.assign(static_cast<std::size_t>(pointCount), 0);
     }
-    invert(cells.cellOffsets, cells.cellPoints, pointCount, pointCellOffsets, pointCells);
 
-    // Targets α_s from the reference mesh. A simplex that is not positive there (a concave
-    // quadrilateral corner, a warped face's tetrahedron in the user's own mesh) is not asked
-    // to become positive: target 0 leaves it out of the objective.
-    std::vector<double> target = simplexVolumes(cells, referencePositions);
-    for (double& value : target) value = value > 0.0 ? options.targetFraction * value : 0.0;
-    const auto counts = [&](Label s) { return target[s] > 0.0; };
+    // Whether simplex s is in the objective (positive target).
+    bool counts(Label s) const { return target[s] > 0.0; }
 
-    std::vector<Vector3> corners(static_cast<std::size_t>(cornerCount));
-    for (Label c = 0; c < cornerCount; ++c) corners[c] = cornerPosition(cells, positions, c);
-    auto refreshCorners = [&](Label point) {
+    // Recomputes the corners that contain `point` after it moved.
+    void refreshCorners(Label point)
+    {
         for (Label k = pointCornerOffsets[point]; k < pointCornerOffsets[point + 1]; ++k)
             corners[pointCorners[k]] = cornerPosition(cells, positions, pointCorners[k]);
-    };
+    }
+
     // Penalty of a simplex: (max(0, α − V)/α)².
-    auto penalty = [&](Label s, Vector3* gradient, double* volume) {
+    double penalty(Label s, Vector3* gradient, double* volume) const
+    {
         std::array<Vector3, 4> corner;
         for (int j = 0; j < cornersPerSimplex; ++j)
             corner[j] = corners[cells.simplexCorners[static_cast<std::size_t>(s) * cornersPerSimplex + j]];
@@ -313,17 +336,12 @@ UntangleResult untangle(const SimplexDecomposition& cells, std::span<const Vecto
         if (!counts(s)) return 0.0;
         const double shortfall = std::max(0.0, target[s] - v) / target[s];
         return shortfall * shortfall;
-    };
+    }
 
-    std::vector<char> cellInRegion(static_cast<std::size_t>(cellCount));
-    std::vector<char> marked(static_cast<std::size_t>(simplexCount), 0);
-    std::vector<Label> localSimplices;
-    std::vector<char> moved(static_cast<std::size_t>(pointCount), 0);
-    int layers = std::max(1, options.layers);
-
-    for (int round = 0; round < options.maxRounds && !inverted.empty(); ++round) {
-        ++result.rounds;
-        // Region: the inverted cells (the caller's test and any non-positive simplex), grown.
+    // Region: the inverted cells (the caller's test and any non-positive simplex), grown.
+    std::vector<char> region(const std::vector<Label>& inverted, int layers) const
+    {
+        std::vector<char> cellInRegion(static_cast<std::size_t>(cellCount));
         std::fill(cellInRegion.begin(), cellInRegion.end(), 0);
         for (Label c : inverted) cellInRegion[c] = 1;
         {
@@ -342,122 +360,173 @@ UntangleResult untangle(const SimplexDecomposition& cells, std::span<const Vecto
             }
             cellInRegion.swap(grown);
         }
-        std::vector<Label> movable;
-        {
-            std::vector<char> isMovable(static_cast<std::size_t>(pointCount), 0);
-            for (Label c = 0; c < cellCount; ++c)
-                if (cellInRegion[c])
-                    for (Label q = cells.cellOffsets[c]; q < cells.cellOffsets[c + 1]; ++q) isMovable[cells.cellPoints[q]] = 1;
-            std::array<Vector3, 3> basis;
-            for (Label p = 0; p < pointCount; ++p)
-                if (isMovable[p] && admissibleBasis(dimension, constraints[p], basis) > 0) movable.push_back(p);
-        }
+        return cellInRegion;
+    }
 
+    // The points of the region's cells that may move in some direction, ascending.
+    std::vector<Label> movablePoints(const std::vector<char>& cellInRegion) const
+    {
+        std::vector<Label> movable;
+        std::vector<char> isMovable(static_cast<std::size_t>(pointCount), 0);
+        for (Label c = 0; c < cellCount; ++c)
+            if (cellInRegion[c])
+                for (Label q = cells.cellOffsets[c]; q < cells.cellOffsets[c + 1]; ++q) isMovable[cells.cellPoints[q]] = 1;
+        std::array<Vector3, 3> basis;
+        for (Label p = 0; p < pointCount; ++p)
+            if (isMovable[p] && admissibleBasis(dimension, constraints[p], basis) > 0) movable.push_back(p);
+        return movable;
+    }
+
+    // The simplices touching p, into localSimplices.
+    void collectLocalSimplices(Label p)
+    {
+        localSimplices.clear();
+        for (Label k = pointCornerOffsets[p]; k < pointCornerOffsets[p + 1]; ++k) {
+            const Label corner = pointCorners[k];
+            for (Label q = cornerSimplexOffsets[corner]; q < cornerSimplexOffsets[corner + 1]; ++q) {
+                const Label s = cornerSimplices[q];
+                if (!marked[s]) {
+                    marked[s] = 1;
+                    localSimplices.push_back(s);
+                }
+            }
+        }
+        for (Label s : localSimplices) marked[s] = 0;
+    }
+
+    // The local objective at p (returned), its gradient and Gauss–Newton matrix with respect to p.
+    double localModel(Label p, Vector3& gradient, std::array<std::array<double, 3>, 3>& hessian) const
+    {
+        // Local objective, its gradient g and Gauss–Newton matrix H with respect to p:
+        // ∂V_s/∂p = Σ_j [p ∈ corner j] ∂V_s/∂corner_j / |corner j|.
+        double objective = 0.0;
+        for (Label s : localSimplices) {
+            std::array<Vector3, 4> cornerGradient;
+            double volume = 0.0;
+            const double value = penalty(s, cornerGradient.data(), &volume);
+            objective += value;
+            if (value == 0.0) continue;
+            Vector3 dVdp{};
+            for (int j = 0; j < cornersPerSimplex; ++j) {
+                const Label corner = cells.simplexCorners[static_cast<std::size_t>(s) * cornersPerSimplex + j];
+                const Label begin = cells.cornerOffsets[corner], end = cells.cornerOffsets[corner + 1];
+                for (Label q = begin; q < end; ++q)
+                    if (cells.cornerPoints[q] == p) dVdp += cornerGradient[j] / static_cast<double>(end - begin);
+            }
+            // f = r², r = (α − V)/α: ∇f = −2 r ∇V/α, Gauss–Newton 2 ∇V ∇Vᵀ/α².
+            const double r = (target[s] - volume) / target[s];
+            gradient += (-2.0 * r / target[s]) * dVdp;
+            for (int a = 0; a < 3; ++a)
+                for (int b = 0; b < 3; ++b) hessian[a][b] += 2.0 * dVdp[a] * dVdp[b] / (target[s] * target[s]);
+        }
+        return objective;
+    }
+
+    // The damped Gauss–Newton step of p in its admissible directions and g·step; false if none.
+    bool newtonStep(Label p, const Vector3& gradient, const std::array<std::array<double, 3>, 3>& hessian, Vector3& step,
+                    double& slope) const
+    {
+        std::array<Vector3, 3> basis;
+        const int k = admissibleBasis(dimension, constraints[p], basis);
+        std::array<std::array<double, 3>, 3> reduced{};
+        std::array<double, 3> rhs{};
+        double trace = 0.0;
+        for (int a = 0; a < k; ++a) {
+            rhs[a] = -dot(basis[a], gradient);
+            for (int b = 0; b < k; ++b) {
+                double value = 0.0;
+                for (int x = 0; x < 3; ++x)
+                    for (int y = 0; y < 3; ++y) value += basis[a][x] * hessian[x][y] * basis[b][y];
+                reduced[a][b] = value;
+            }
+            trace += reduced[a][a];
+        }
+        // Levenberg–Marquardt damping keeps the step defined where H is singular.
+        for (int a = 0; a < k; ++a) reduced[a][a] += 1e-6 * trace / k + 1e-300;
+        if (!solveSmall(k, reduced, rhs)) return false;
+        step = Vector3{};
+        for (int a = 0; a < k; ++a) step += rhs[a] * basis[a];
+        slope = 0.0;
+        for (int a = 0; a < k; ++a) slope -= rhs[a] * dot(basis[a], gradient);  // g·step < 0
+        return true;
+    }
+
+    // Backtracking (Armijo) along step from p's position; the local objective where p ends.
+    double lineSearch(Label p, double objective, const Vector3& step, double slope)
+    {
+        const Vector3 start = positions[p];
+        double length = 1.0;
+        bool accepted = false;
+        double trial = objective;
+        for (int attempt = 0; attempt < 40; ++attempt, length *= 0.5) {
+            positions[p] = start + length * step;
+            refreshCorners(p);
+            trial = 0.0;
+            for (Label s : localSimplices) trial += penalty(s, nullptr, nullptr);
+            if (trial <= objective + 1e-4 * length * slope && trial < objective) {
+                accepted = true;
+                break;
+            }
+        }
+        if (!accepted) {
+            positions[p] = start;
+            refreshCorners(p);
+            trial = objective;
+        } else {
+            moved[p] = 1;
+        }
+        return trial;
+    }
+
+    // One Gauss–Newton move of p; its local objective after, or nothing when p has nothing to do.
+    std::optional<double> relaxPoint(Label p)
+    {
+        collectLocalSimplices(p);
+        Vector3 gradient{};
+        std::array<std::array<double, 3>, 3> hessian{};
+        const double objective = localModel(p, gradient, hessian);
+        if (objective == 0.0) return std::nullopt;
+        Vector3 step{};
+        double slope = 0.0;
+        if (!newtonStep(p, gradient, hessian, step, slope)) return std::nullopt;
+        return lineSearch(p, objective, step, slope);
+    }
+
+    // Whether every counted simplex touching a movable point is positive.
+    bool allPositive(const std::vector<Label>& movable) const
+    {
+        bool positive = true;
+        for (Label p : movable) {
+            if (!positive) break;
+            for (Label k = pointCornerOffsets[p]; k < pointCornerOffsets[p + 1] && positive; ++k) {
+                const Label corner = pointCorners[k];
+                for (Label q = cornerSimplexOffsets[corner]; q < cornerSimplexOffsets[corner + 1]; ++q) {
+                    double volume = 0.0;
+                    penalty(cornerSimplices[q], nullptr, &volume);
+                    if (counts(cornerSimplices[q]) && !(volume > 0.0)) {
+                        positive = false;
+                        break;
+                    }
+                }
+            }
+        }
+        return positive;
+    }
+
+    // One round: sweeps over the region of `inverted` grown by `layers`, until the caller's
+    // test passes or the sweeps stagnate; `inverted` is updated as the test is rerun.
+    void round(std::vector<Label>& inverted, int layers, const InvertedCellTest& isInverted, UntangleResult& result)
+    {
+        const std::vector<Label> movable = movablePoints(region(inverted, layers));
         double best = std::numeric_limits<double>::infinity();
         int sinceImprovement = 0;
         for (int sweep = 0; sweep < options.maxSweepsPerRound; ++sweep) {
             ++result.sweeps;
             double total = 0.0;
-            bool allPositive = true;
             for (Label p : movable) {
-                // The simplices touching p.
-                localSimplices.clear();
-                for (Label k = pointCornerOffsets[p]; k < pointCornerOffsets[p + 1]; ++k) {
-                    const Label corner = pointCorners[k];
-                    for (Label q = cornerSimplexOffsets[corner]; q < cornerSimplexOffsets[corner + 1]; ++q) {
-                        const Label s = cornerSimplices[q];
-                        if (!marked[s]) {
-                            marked[s] = 1;
-                            localSimplices.push_back(s);
-                        }
-                    }
-                }
-                for (Label s : localSimplices) marked[s] = 0;
-                // Local objective, its gradient g and Gauss–Newton matrix H with respect to p:
-                // ∂V_s/∂p = Σ_j [p ∈ corner j] ∂V_s/∂corner_j / |corner j|.
-                double objective = 0.0;
-                Vector3 gradient{};
-                std::array<std::array<double, 3>, 3> hessian{};
-                for (Label s : localSimplices) {
-                    std::array<Vector3, 4> cornerGradient;
-                    double volume = 0.0;
-                    const double value = penalty(s, cornerGradient.data(), &volume);
-                    objective += value;
-                    if (value == 0.0) continue;
-                    Vector3 dVdp{};
-                    for (int j = 0; j < cornersPerSimplex; ++j) {
-                        const Label corner = cells.simplexCorners[static_cast<std::size_t>(s) * cornersPerSimplex + j];
-                        const Label begin = cells.cornerOffsets[corner], end = cells.cornerOffsets[corner + 1];
-                        for (Label q = begin; q < end; ++q)
-                            if (cells.cornerPoints[q] == p) dVdp += cornerGradient[j] / static_cast<double>(end - begin);
-                    }
-                    // f = r², r = (α − V)/α: ∇f = −2 r ∇V/α, Gauss–Newton 2 ∇V ∇Vᵀ/α².
-                    const double r = (target[s] - volume) / target[s];
-                    gradient += (-2.0 * r / target[s]) * dVdp;
-                    for (int a = 0; a < 3; ++a)
-                        for (int b = 0; b < 3; ++b) hessian[a][b] += 2.0 * dVdp[a] * dVdp[b] / (target[s] * target[s]);
-                }
-                if (objective == 0.0) continue;
-                std::array<Vector3, 3> basis;
-                const int k = admissibleBasis(dimension, constraints[p], basis);
-                std::array<std::array<double, 3>, 3> reduced{};
-                std::array<double, 3> rhs{};
-                double trace = 0.0;
-                for (int a = 0; a < k; ++a) {
-                    rhs[a] = -dot(basis[a], gradient);
-                    for (int b = 0; b < k; ++b) {
-                        double value = 0.0;
-                        for (int x = 0; x < 3; ++x)
-                            for (int y = 0; y < 3; ++y) value += basis[a][x] * hessian[x][y] * basis[b][y];
-                        reduced[a][b] = value;
-                    }
-                    trace += reduced[a][a];
-                }
-                // Levenberg–Marquardt damping keeps the step defined where H is singular.
-                for (int a = 0; a < k; ++a) reduced[a][a] += 1e-6 * trace / k + 1e-300;
-                if (!solveSmall(k, reduced, rhs)) continue;
-                Vector3 step{};
-                for (int a = 0; a < k; ++a) step += rhs[a] * basis[a];
-                double slope = 0.0;
-                for (int a = 0; a < k; ++a) slope -= rhs[a] * dot(basis[a], gradient);  // g·step < 0
-                const Vector3 start = positions[p];
-                double length = 1.0;
-                bool accepted = false;
-                double trial = objective;
-                for (int attempt = 0; attempt < 40; ++attempt, length *= 0.5) {
-                    positions[p] = start + length * step;
-                    refreshCorners(p);
-                    trial = 0.0;
-                    for (Label s : localSimplices) trial += penalty(s, nullptr, nullptr);
-                    if (trial <= objective + 1e-4 * length * slope && trial < objective) {
-                        accepted = true;
-                        break;
-                    }
-                }
-                if (!accepted) {
-                    positions[p] = start;
-                    refreshCorners(p);
-                    trial = objective;
-                } else {
-                    moved[p] = 1;
-                }
-                total += trial;
+                if (const std::optional<double> trial = relaxPoint(p)) total += *trial;
             }
-            for (Label p : movable) {
-                if (!allPositive) break;
-                for (Label k = pointCornerOffsets[p]; k < pointCornerOffsets[p + 1] && allPositive; ++k) {
-                    const Label corner = pointCorners[k];
-                    for (Label q = cornerSimplexOffsets[corner]; q < cornerSimplexOffsets[corner + 1]; ++q) {
-                        double volume = 0.0;
-                        penalty(cornerSimplices[q], nullptr, &volume);
-                        if (counts(cornerSimplices[q]) && !(volume > 0.0)) {
-                            allPositive = false;
-                            break;
-                        }
-                    }
-                }
-            }
-            if (allPositive || total == 0.0) {
+            if (allPositive(movable) || total == 0.0) {
                 inverted = isInverted(positions);
                 if (inverted.empty()) break;
             }
@@ -469,21 +538,48 @@ UntangleResult untangle(const SimplexDecomposition& cells, std::span<const Vecto
                 break;
             }
         }
+    }
+
+    // The cells still inverted (ascending), those of them with every point fixed, and the moved points.
+    void finish(const std::vector<Label>& inverted, UntangleResult& result) const
+    {
+        result.remainingCells = inverted;
+        std::sort(result.remainingCells.begin(), result.remainingCells.end());
+        for (Label c : result.remainingCells) {
+            bool allFixed = true;
+            for (Label q = cells.cellOffsets[c]; q < cells.cellOffsets[c + 1] && allFixed; ++q) {
+                std::array<Vector3, 3> basis;
+                allFixed = admissibleBasis(dimension, constraints[cells.cellPoints[q]], basis) == 0;
+            }
+            if (allFixed) result.stuckCells.push_back(c);
+        }
+        for (Label p = 0; p < pointCount; ++p) result.movedPoints += moved[p];
+    }
+};
+
+} // namespace
+
+UntangleResult untangle(const SimplexDecomposition& cells, std::span<const Vector3> referencePositions,
+                        std::span<const UntanglePointConstraint> constraints, std::vector<Vector3>& positions,
+                        const InvertedCellTest& isInverted, const UntangleOptions& options)
+{
+    const Label pointCount = static_cast<Label>(positions.size());
+    if (static_cast<Label>(referencePositions.size()) != pointCount || static_cast<Label>(constraints.size()) != pointCount)
+        throw std::invalid_argument("untangle: positions, reference positions and constraints differ in size");
+    UntangleResult result;
+    std::vector<Label> inverted = isInverted(positions);
+    result.initialInverted = static_cast<Label>(inverted.size());
+    if (inverted.empty()) return result;
+
+    Untangler untangler(cells, referencePositions, constraints, positions, options);
+    int layers = std::max(1, options.layers);
+    for (int round = 0; round < options.maxRounds && !inverted.empty(); ++round) {
+        ++result.rounds;
+        untangler.round(inverted, layers, isInverted, result);
         inverted = isInverted(positions);
         layers *= 2;
     }
-
-    result.remainingCells = inverted;
-    std::sort(result.remainingCells.begin(), result.remainingCells.end());
-    for (Label c : result.remainingCells) {
-        bool allFixed = true;
-        for (Label q = cells.cellOffsets[c]; q < cells.cellOffsets[c + 1] && allFixed; ++q) {
-            std::array<Vector3, 3> basis;
-            allFixed = admissibleBasis(dimension, constraints[cells.cellPoints[q]], basis) == 0;
-        }
-        if (allFixed) result.stuckCells.push_back(c);
-    }
-    for (Label p = 0; p < pointCount; ++p) result.movedPoints += moved[p];
+    untangler.finish(inverted, result);
     return result;
 }
 
