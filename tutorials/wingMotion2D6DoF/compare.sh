@@ -109,7 +109,7 @@ state() {
     /Centre of rotation:/{c=$0; sub(/.*: *\(/, "", c); sub(/\).*/, "", c); split(c, p, " ")}
     /    Orientation:/{o=$0; sub(/.*Orientation: */, "", o); th=angle(o); if (a0=="") a0=th
                        if (t <= T + 1e-12) {y=p[2]; a=th - a0}}
-    END{printf "%.5f|%.2f", y, a}' "$1"
+    END{printf "%.6f|%.3f", y, a}' "$1"
 }
 # extremes <pimpleFoam log>: "min y|max y|min rotation|max rotation"
 extremes() {
@@ -126,7 +126,7 @@ force() {
   local f=$1/postProcessing/forces/0
   [[ -f $f/force.dat && -f $f/moment.dat ]] || { echo "—|—"; return; }
   paste <(tr -d '()' < "$f/force.dat") <(tr -d '()' < "$f/moment.dat") |
-    awk -v T="$2" '!/^#/ && $1+0 <= T + 1e-12 {fy=$3; mz=$14} END{printf "%.1f|%.1f", fy, mz}'
+    awk -v T="$2" '!/^#/ && $1+0 <= T + 1e-12 {fy=$3; mz=$14} END{printf "%.2f|%.2f", fy, mz}'
 }
 lastTime() { awk '/^Time = [^ ]+$/{t=$3} END{print t}' "$1"; }
 
@@ -139,6 +139,7 @@ for r in "${runs[@]}"; do
   if grep -q '^End' "$log"; then row[$r,end]+=", End"
   else row[$r,end]+=", $(grep -m1 -E 'FOAM FATAL|Floating point|[Ee]rror' "$log" | sed 's/^ *//; s/|/\\|/g' | cut -c1-70)"; fi
   row[$r,q]=$(checkQuality "$d/log.checkMesh")
+  row[$r,lastq]=$(awk '/^Time = [^ ]+$/{t=$3} /non-orthogonality Max:/{no=$4} END{printf "%.4f° (t = %s)", no, t}' "$d/log.checkMesh")
   row[$r,ext]=$(extremes "$log")
   row[$r,cpu]=$(awk -v n="$steps" '/^ExecutionTime/{e=$3; c=$7} END{if (n>0) printf "%.3f (%.3f)", e/n, c/n; else printf "—"}' "$log")
   row[$r,own]=$(awk '/^rigidBodyMotionSolver: sub-steps .* inverted /{n++; for (i=1;i<=NF;i++) {
@@ -167,12 +168,14 @@ for amp in "" -large; do
   echo "| … failed checks, worst (the initial mesh fails 1: one face of skewness 4.77) | $(cell "$a" q 2) | $(cell "$b" q 2) |"
   echo "| … inverted cells (negative volume), worst | $(cell "$a" q 5) | $(cell "$b" q 5) |"
   echo "| … worst max non-orthogonality (initial 49.8°) | $(cell "$a" q 3) | $(cell "$b" q 3) |"
+  echo "| … max non-orthogonality at the last time written | $(cell "$a" lastq) | $(cell "$b" lastq) |"
   echo "| … worst max skewness (initial 4.77) | $(cell "$a" q 4) | $(cell "$b" q 4) |"
-  echo "| body: centre of rotation y, rotation from the start, over the run | $(cell "$a" ext 1), $(cell "$a" ext 2) | $(cell "$b" ext 1), $(cell "$b" ext 2) |"
+  echo "| body: centre of rotation y (m), rotation from the start (negative: clockwise, nose up), range over the run | $(cell "$a" ext 1), $(cell "$a" ext 2) | $(cell "$b" ext 1), $(cell "$b" ext 2) |"
   echo "| pimpleFoam CPU s per step, motion included (wall) | $(cell "$a" cpu) | $(cell "$b" cpu) |"
+  echo "| … rbm − OpenFOAM, CPU s per step (the motion's cost difference: same flow solver, same steps) | $(awk -v x="$(cell "$a" cpu)" -v y="$(cell "$b" cpu)" 'BEGIN{if (x+0 > 0 && y+0 > 0) printf "%+.4f", x - y; else printf "—"}') | |"
   echo "| rbm's own motion timer | $(cell "$a" own) | — |"
   echo
-  echo "| t | y rbm | y OpenFOAM | rotation rbm (°) | rotation OpenFOAM (°) | Fy rbm (N) | Fy OpenFOAM (N) | Mz rbm (N m) | Mz OpenFOAM (N m) |"
+  echo "| t (s) | y rbm (m) | y OpenFOAM (m) | rotation rbm (°) | rotation OpenFOAM (°) | Fy rbm (N) | Fy OpenFOAM (N) | Mz rbm (N m) | Mz OpenFOAM (N m) |"
   echo "|---|---|---|---|---|---|---|---|---|"
   for t in $(awk -v e="$end" 'BEGIN{for (k=1;k<=5;k++) printf "%g ", k*e/5}'); do
     sa="—|—"; fa="—|—"
@@ -180,4 +183,20 @@ for amp in "" -large; do
     sb=$(state "$(folderOf "$b")/log.pimpleFoam" "$t"); fb=$(force "$(folderOf "$b")" "$t")
     echo "| $t | ${sa%|*} | ${sb%|*} | ${sa#*|} | ${sb#*|} | ${fa%|*} | ${fb%|*} | ${fa#*|} | ${fb#*|} |"
   done
+  if [[ -n $plugin ]]; then
+    echo
+    # Step by step while both runs are at the same time (to 1e-3 of it: the time step adapts to
+    # the Courant number, so the runs may part).
+    fa=$(folderOf "$a")/postProcessing/forces/0; fb=$(folderOf "$b")/postProcessing/forces/0
+    paste <(tr -d '()' < "$fa/force.dat" | grep -v '^#') <(tr -d '()' < "$fa/moment.dat" | grep -v '^#') \
+          <(tr -d '()' < "$fb/force.dat" | grep -v '^#') <(tr -d '()' < "$fb/moment.dat" | grep -v '^#') |
+      awk 'function abs(x) {return x < 0 ? -x : x}
+           NF >= 40 { if (abs($1 - $21) > 1e-3 * abs($21)) {parted = $1; exit}
+                      n++; t = $1
+                      if (abs($23) > fmax) fmax = abs($23); if (abs($34) > mmax) mmax = abs($34)
+                      if (abs($3 - $23) > df) {df = abs($3 - $23); tf = $1}
+                      if (abs($14 - $34) > dm) {dm = abs($14 - $34); tm = $1} }
+           END { printf "Step by step, %d steps at the same time (to t = %s%s): largest |Fy(rbm) − Fy(OpenFOAM)| %.3g N at t = %s (largest |Fy| %.4g N), largest |Mz(rbm) − Mz(OpenFOAM)| %.3g N m at t = %s (largest |Mz| %.4g N m).\n",
+                        n, t, (parted == "" ? "" : "; the time steps part after it"), df, tf, fmax, dm, tm, mmax }'
+  fi
 done
