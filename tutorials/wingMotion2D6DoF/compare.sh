@@ -109,7 +109,7 @@ state() {
     /Centre of rotation:/{c=$0; sub(/.*: *\(/, "", c); sub(/\).*/, "", c); split(c, p, " ")}
     /    Orientation:/{o=$0; sub(/.*Orientation: */, "", o); th=angle(o); if (a0=="") a0=th
                        if (t <= T + 1e-12) {y=p[2]; a=th - a0}}
-    END{printf "%.6f|%.3f", y, a}' "$1"
+    END{if (t < T * (1 - 1e-6)) printf "—|—"; else printf "%.6f|%.3f", y, a}' "$1"
 }
 # extremes <pimpleFoam log>: "min y|max y|min rotation|max rotation"
 extremes() {
@@ -126,7 +126,7 @@ force() {
   local f=$1/postProcessing/forces/0
   [[ -f $f/force.dat && -f $f/moment.dat ]] || { echo "—|—"; return; }
   paste <(tr -d '()' < "$f/force.dat") <(tr -d '()' < "$f/moment.dat") |
-    awk -v T="$2" '!/^#/ && $1+0 <= T + 1e-12 {fy=$3; mz=$14} END{printf "%.2f|%.2f", fy, mz}'
+    awk -v T="$2" '!/^#/ {last=$1+0} !/^#/ && $1+0 <= T + 1e-12 {fy=$3; mz=$14} END{if (last < T * (1 - 1e-6)) printf "—|—"; else printf "%.2f|%.2f", fy, mz}'
 }
 lastTime() { awk '/^Time = [^ ]+$/{t=$3} END{print t}' "$1"; }
 
@@ -137,7 +137,10 @@ for r in "${runs[@]}"; do
   steps=$(grep -c '^ExecutionTime' "$log")
   row[$r,end]="exit status $(cat "$work/status.$r"), $steps steps, last t = $(lastTime "$log")"
   if grep -q '^End' "$log"; then row[$r,end]+=", End"
-  else row[$r,end]+=", $(grep -m1 -E 'FOAM FATAL|Floating point|[Ee]rror' "$log" | sed 's/^ *//; s/|/\\|/g' | cut -c1-70)"; fi
+  elif grep -q 'sigFpe::sigHandler' "$log"; then row[$r,end]+=", floating point exception (sigFpe, in $(grep -m1 -A2 'sigFpe::sigHandler' "$log" | tail -1 | sed -E 's/^#[0-9]+ +Foam::([A-Za-z:]+).*/\1/'))"
+  else row[$r,end]+=", $(grep -m1 -E 'FOAM FATAL|sigSegv|[Ee]rror' "$log" | sed 's/^ *//; s/|/\\|/g' | cut -c1-70)"; fi
+  row[$r,dt]=$(awk '/^deltaT = /{d=$3+0; if (n==0 || d < m) m=d; n++; if (d < 1e-6 && c=="") c=t} /^Time = [^ ]+$/{t=$3}
+                    END{printf "%.3g s", m; if (c != "") printf " (below 1e-6 s from t = %s on)", c}' "$log")
   row[$r,q]=$(checkQuality "$d/log.checkMesh")
   row[$r,lastq]=$(awk '/^Time = [^ ]+$/{t=$3} /non-orthogonality Max:/{no=$4} END{printf "%.4f° (t = %s)", no, t}' "$d/log.checkMesh")
   row[$r,ext]=$(extremes "$log")
@@ -158,12 +161,13 @@ cell() { if [[ $1 == rbm* && -z $plugin ]]; then echo "not run (plugin not built
 for amp in "" -large; do
   echo
   if [[ -z $amp ]]; then echo "**The tutorial's amplitude** (angularMomentum (0 0 -2), OpenFOAM's values):"
-  else echo "**The larger amplitude** (\`-large\`: angularMomentum (0 0 -60), the wing kicked nose down at 29 rad/s):"; fi
+  else echo "**The larger amplitude** (\`-large\`: angularMomentum (0 0 -60), the wing kicked nose up at 29 rad/s):"; fi
   echo
   echo "| | rbm (\`sixDoFRigidBodyDisplacement\` + \`rigidBodyMotionSolver\`) | OpenFOAM \`sixDoFRigidBodyMotion\` |"
   echo "|---|---|---|"
   a=rbm$amp; b=openfoam$amp
   echo "| pimpleFoam | $(cell "$a" end) | $(cell "$b" end) |"
+  echo "| smallest time step (Courant 0.9) | $(cell "$a" dt) | $(cell "$b" dt) |"
   echo "| checkMesh at the times written: times checked | $(cell "$a" q 1) | $(cell "$b" q 1) |"
   echo "| … failed checks, worst (the initial mesh fails 1: one face of skewness 4.77) | $(cell "$a" q 2) | $(cell "$b" q 2) |"
   echo "| … inverted cells (negative volume), worst | $(cell "$a" q 5) | $(cell "$b" q 5) |"
