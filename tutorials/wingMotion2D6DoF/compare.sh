@@ -192,15 +192,21 @@ for amp in "" -large; do
     # Step by step while both runs are at the same time (to 1e-3 of it: the time step adapts to
     # the Courant number, so the runs may part).
     fa=$(folderOf "$a")/postProcessing/forces/0; fb=$(folderOf "$b")/postProcessing/forces/0
+    common=$(awk -v x="$(lastTime "$(folderOf "$a")/log.pimpleFoam")" -v y="$(lastTime "$(folderOf "$b")/log.pimpleFoam")" -v e="$end" \
+             'BEGIN{m = (x + 0 < y + 0 ? x : y); w = e / 5; printf "%g", int(m / w + 1e-6) * w}')
     paste <(tr -d '()' < "$fa/force.dat" | grep -v '^#') <(tr -d '()' < "$fa/moment.dat" | grep -v '^#') \
           <(tr -d '()' < "$fb/force.dat" | grep -v '^#') <(tr -d '()' < "$fb/moment.dat" | grep -v '^#') |
-      awk 'function abs(x) {return x < 0 ? -x : x}
+      awk -v W="$common" 'function abs(x) {return x < 0 ? -x : x}
            NF >= 40 { if (abs($1 - $21) > 1e-3 * abs($21)) {parted = $1; exit}
+                      if ($1 <= W + 1e-12) {
+                        if (abs($23) > wf) wf = abs($23); if (abs($34) > wm) wm = abs($34)
+                        if (abs($3 - $23) > wdf) wdf = abs($3 - $23); if (abs($14 - $34) > wdm) wdm = abs($14 - $34) }
                       n++; t = $1
                       if (abs($23) > fmax) fmax = abs($23); if (abs($34) > mmax) mmax = abs($34)
                       if (abs($3 - $23) > df) {df = abs($3 - $23); tf = $1}
                       if (abs($14 - $34) > dm) {dm = abs($14 - $34); tm = $1} }
            END { printf "Step by step, %d steps at the same time (to t = %s%s): largest |Fy(rbm) − Fy(OpenFOAM)| %.3g N at t = %s (largest |Fy| %.4g N), largest |Mz(rbm) − Mz(OpenFOAM)| %.3g N m at t = %s (largest |Mz| %.4g N m).\n",
-                        n, t, (parted == "" ? "" : "; the time steps part after it"), df, tf, fmax, dm, tm, mmax }'
+                        n, t, (parted == "" ? "" : "; the time steps part after it"), df, tf, fmax, dm, tm, mmax
+                 if (W + 0 < t + 0) printf "Up to t = %s, the last time both runs wrote: largest |Fy(rbm) − Fy(OpenFOAM)| %.3g N (largest |Fy| %.4g N), largest |Mz(rbm) − Mz(OpenFOAM)| %.3g N m (largest |Mz| %.4g N m).\n", W, wdf, wf, wdm, wm }'
   fi
 done
