@@ -29,6 +29,7 @@ endif()
 function(fail message)
   message(SEND_ERROR "${message}")
 endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/PluginLogChecks.cmake)
 
 # --- What is needed, or a visible skip ----------------------------------------------------------
 find_program(PIMPLE_FOAM pimpleFoam)
@@ -103,17 +104,7 @@ if(NOT timeLineCount EQUAL STEPS)
 endif()
 
 if(MOTION STREQUAL "rbm")
-  # rbm's own line per step: "rigidBodyMotionSolver: sub-steps n ... inverted n ...".
-  string(REGEX MATCHALL "\nrigidBodyMotionSolver: sub-steps [^\n]* inverted [0-9]+" rbmLines "${out}")
-  list(LENGTH rbmLines rbmCount)
-  if(NOT rbmCount EQUAL STEPS)
-    fail("rbm's plugin logged ${rbmCount} steps, expected ${STEPS}")
-  endif()
-  foreach(line IN LISTS rbmLines)
-    if(NOT line MATCHES " inverted 0$")
-      fail("rbm's plugin reports inverted cells: ${line}")
-    endif()
-  endforeach()
+  checkRbmPluginSteps("${out}" ${STEPS})   # rbm's own line per step, 0 inverted
 endif()
 file(GLOB lastPoints ${case}/0.0*/polyMesh/points)
 if(NOT lastPoints)
