@@ -1,6 +1,6 @@
 #pragma once
 // The entry functions of rbm's fuzz targets, shared by the libFuzzer programs in fuzz/ and by
-// tests/FuzzRegressionTest.cpp, which replays every committed corpus and regression input
+// tests/fuzz/FuzzRegressionTest.cpp, which replays every committed corpus and regression input
 // through them in the normal build.
 //
 // Contract: each function takes arbitrary bytes and either returns (the input was read) or

@@ -4,7 +4,7 @@
 // stiffening factors. PETSc, MUMPS and hypre are not affected (OpenBLAS, under MUMPS, has
 // its own OPENBLAS_NUM_THREADS). Every threaded loop gives bitwise the same result for any
 // thread count: each thread writes only its own slots and every sum is formed in a fixed
-// order (docs/rbmMoveMesh.md, "Threads"; tests/ThreadDeterminismTest.cpp).
+// order (docs/rbmMoveMesh.md, "Threads"; tests/system/ThreadDeterminismTest.cpp).
 //
 // The policy, in one place:
 //   OMP_NUM_THREADS set       → exactly that many (OpenMP's own reading of it);

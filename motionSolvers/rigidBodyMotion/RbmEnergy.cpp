@@ -334,7 +334,7 @@ double evaluateSerially(const RbmProblem& problem, RotationModel model, const st
 // own, then those of j > i, as the serial pass adds them (with w_ji = w_ij,
 // RbmProblem::edgeWeights). The energy is the ordered sum of per-edge terms. Gathering
 // forms each residual at both ends, about twice the serial arithmetic for ∇: it pays only
-// when the work really is shared (tests/ThreadDeterminismTest.cpp compares both).
+// when the work really is shared (tests/system/ThreadDeterminismTest.cpp compares both).
 double evaluateThreaded(const RbmProblem& problem, RotationModel model, const std::vector<Vector3>& prescribed,
                         std::span<const double> unknowns, double* gradient, double* hessian, bool includeCurvature)
 {

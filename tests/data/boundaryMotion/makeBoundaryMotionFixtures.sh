@@ -1,5 +1,5 @@
 #!/bin/bash
-# Regenerates the OpenFOAM v1912 reference motions used by tests/BoundaryMotionTest.cpp.
+# Regenerates the OpenFOAM v1912 reference motions used by tests/motionSolvers/boundaryMotion/.
 # Each case folder holds its inputs (system/, constant/, 0/) and the points OpenFOAM's
 # moveDynamicMesh wrote at the times it ran; the test applies rbm's motion laws to
 # constant/polyMesh/points and compares. Run from anywhere with OpenFOAM v1912 installed:

@@ -1,5 +1,5 @@
 #!/bin/bash
-# Regenerates the committed malformed inputs of tests/MalformedCaseTest.cpp. Not run by the
+# Regenerates the committed malformed inputs of tests/apps/MalformedCaseTest.cpp. Not run by the
 # tests; run it by hand after changing it (needs OpenFOAM v1912's blockMesh and python3):
 #     tests/data/malformedCases/makeMalformedCases.sh
 #

@@ -1,5 +1,5 @@
 #!/bin/bash
-# Regenerates the pointVectorField fixtures of tests/PointVectorFieldTest.cpp with OpenFOAM
+# Regenerates the pointVectorField fixtures of tests/io/PointVectorFieldTest.cpp with OpenFOAM
 # v1912. Not run by the tests (rbm never needs OpenFOAM); run it by hand:
 #     tests/data/dictionaries/pointField/makePointFieldFixture.sh
 #
