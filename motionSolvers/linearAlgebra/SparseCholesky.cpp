@@ -65,30 +65,15 @@ private:
     cholmod_common common_{};
 };
 
-} // namespace
-#endif
-
-SparseCholesky::SparseCholesky(int n, std::span<const int> rowOffsets, std::span<const int> columns,
-                               std::span<const double> values, FactorPrecision precision)
-    : size_(n), precision_(precision)
+// The upper triangle in compressed columns: entry (i, j), i ≤ j, is A(j, i) of row j
+// (A is symmetric), sorted by row within each column.
+void copyUpperTriangle(CholmodSession& session, int n, std::span<const int> rowOffsets, std::span<const int> columns,
+                       std::span<const double> values)
 {
-#if !defined(RBM_HAVE_CHOLMOD)
-    (void)rowOffsets;
-    (void)columns;
-    (void)values;
-    (void)precision;
-    throw std::runtime_error("sparse Cholesky: this build has no CHOLMOD (install libsuitesparse-dev and rebuild)");
-#else
-    if (n < 0 || rowOffsets.size() != static_cast<std::size_t>(n) + 1 || columns.size() != values.size() ||
-        static_cast<std::size_t>(rowOffsets[n]) != columns.size())
-        throw std::invalid_argument("sparse Cholesky: inconsistent compressed rows");
-    // The upper triangle in compressed columns: entry (i, j), i ≤ j, is A(j, i) of row j
-    // (A is symmetric), sorted by row within each column.
     std::size_t upperCount = 0;
     for (int row = 0; row < n; ++row)
         for (int position = rowOffsets[row]; position < rowOffsets[row + 1]; ++position)
             if (columns[position] <= row) ++upperCount;
-    CholmodSession session;
     session.matrix_ = cholmod_allocate_sparse(n, n, upperCount, 1, 1, 1, CHOLMOD_REAL, session.common());
     session.check("allocating the matrix");
     auto* start = static_cast<int*>(session.matrix_->p);
@@ -109,7 +94,11 @@ SparseCholesky::SparseCholesky(int n, std::span<const int> rowOffsets, std::span
         }
     }
     start[n] = static_cast<int>(next);
+}
 
+// CHOLMOD's supernodal factor of the session's matrix, checked positive definite and supernodal.
+void factorise(CholmodSession& session, int n)
+{
     // Always supernodal, so that there is one layout to copy (a small matrix CHOLMOD would
     // factorise simplicially costs a few microseconds either way).
     session.common()->supernodal = CHOLMOD_SUPERNODAL;
@@ -126,65 +115,135 @@ SparseCholesky::SparseCholesky(int n, std::span<const int> rowOffsets, std::span
     if (session.common()->status == CHOLMOD_NOT_POSDEF || session.factor_->minor < static_cast<std::size_t>(n))
         throw std::runtime_error("sparse Cholesky: the matrix is not positive definite (column " +
                                  std::to_string(session.factor_->minor) + ")");
-    const cholmod_factor& factor = *session.factor_;
-    if (!factor.is_super)
+    if (!session.factor_->is_super)
         throw std::runtime_error("sparse Cholesky: CHOLMOD returned a simplicial factor where a supernodal one was asked for");
-    const auto* permutation = static_cast<const int*>(factor.Perm);
+}
+
+// rbm's supernodal layout of CHOLMOD's factor (see SparseCholesky's members).
+struct FactorLayout {
+    std::vector<int>& supernodeStart;
+    std::vector<int>& belowStart;
+    std::vector<int>& belowRow;
+    std::vector<std::size_t>& valueStart;
+};
+
+// Fills the layout's starts and sizes belowRow; returns the number of entries rbm keeps.
+std::size_t computeLayout(const cholmod_factor& factor, const FactorLayout& layout)
+{
     const auto* super = static_cast<const int*>(factor.super);
     const auto* rowPointer = static_cast<const int*>(factor.pi);
-    const auto* valuePointer = static_cast<const int*>(factor.px);
-    const auto* rows = static_cast<const int*>(factor.s);
-    const auto* factorValues = static_cast<const double*>(factor.x);
     const std::size_t supernodes = factor.nsuper;
-    supernodeStart_.assign(super, super + supernodes + 1);
-    belowStart_.assign(supernodes + 1, 0);
-    valueStart_.assign(supernodes + 1, 0);
+    layout.supernodeStart.assign(super, super + supernodes + 1);
+    layout.belowStart.assign(supernodes + 1, 0);
+    layout.valueStart.assign(supernodes + 1, 0);
     std::size_t belowTotal = 0, valueTotal = 0;
     for (std::size_t supernode = 0; supernode < supernodes; ++supernode) {
         const std::size_t width = static_cast<std::size_t>(super[supernode + 1] - super[supernode]);
         const std::size_t below = static_cast<std::size_t>(rowPointer[supernode + 1] - rowPointer[supernode]) - width;
         belowTotal += below;
         valueTotal += width * (width + 1) / 2 + below * width;
-        belowStart_[supernode + 1] = static_cast<int>(belowTotal);
-        valueStart_[supernode + 1] = valueTotal;
+        layout.belowStart[supernode + 1] = static_cast<int>(belowTotal);
+        layout.valueStart[supernode + 1] = valueTotal;
     }
-    belowRow_.resize(belowTotal);
-    // Written straight in the kept precision: no second copy of L at the peak (CHOLMOD's own
-    // factor is still alive here). With `scratch`, each supernode's block is copied there
-    // first: the single-precision entries are then written over CHOLMOD's own (below).
-    auto copyFactor = [&](auto* values, std::vector<double>* scratch) {
-        for (std::size_t supernode = 0; supernode < supernodes; ++supernode) {
-            const int first = super[supernode];
-            const int width = super[supernode + 1] - first;
-            const int rowCount = rowPointer[supernode + 1] - rowPointer[supernode];
-            const int* rowList = rows + rowPointer[supernode];
-            // CHOLMOD's block: column-major, rowCount rows, its first `width` rows the
-            // supernode's own columns.
-            const double* block = factorValues + valuePointer[supernode];
-            if (scratch) {
-                scratch->assign(block, block + static_cast<std::size_t>(rowCount) * width);
-                block = scratch->data();
-            }
-            auto entry = [&](int row, int column) { return block[static_cast<std::size_t>(column) * rowCount + row]; };
-            auto* out = values + valueStart_[supernode];
-            using Entry = std::remove_pointer_t<decltype(out)>;
-            for (int r = 0; r < width; ++r) {
-                if (rowList[r] != first + r)
-                    throw std::runtime_error("sparse Cholesky: unexpected factor layout in supernode " +
-                                             std::to_string(supernode));
-                for (int c = 0; c < r; ++c) *out++ = static_cast<Entry>(entry(r, c));
-                const double diagonal = entry(r, r);
-                if (!(diagonal > 0.0))
-                    throw std::runtime_error("sparse Cholesky: the matrix is not positive definite (column " +
-                                             std::to_string(first + r) + " of the factor)");
-                *out++ = static_cast<Entry>(1.0 / diagonal);
-            }
-            int* belowOut = belowRow_.data() + belowStart_[supernode];
-            for (int r = width; r < rowCount; ++r) *belowOut++ = rowList[r];
-            for (int c = 0; c < width; ++c)
-                for (int r = width; r < rowCount; ++r) *out++ = static_cast<Entry>(entry(r, c));
+    layout.belowRow.resize(belowTotal);
+    return valueTotal;
+}
+
+// Written straight in the kept precision: no second copy of L at the peak (CHOLMOD's own
+// factor is still alive here). With `scratch`, each supernode's block is copied there
+// first: the single-precision entries are then written over CHOLMOD's own (below).
+template <typename Entry>
+void copyFactor(const cholmod_factor& factor, const FactorLayout& layout, Entry* values, std::vector<double>* scratch)
+{
+    const auto* super = static_cast<const int*>(factor.super);
+    const auto* rowPointer = static_cast<const int*>(factor.pi);
+    const auto* valuePointer = static_cast<const int*>(factor.px);
+    const auto* rows = static_cast<const int*>(factor.s);
+    const auto* factorValues = static_cast<const double*>(factor.x);
+    const std::size_t supernodes = factor.nsuper;
+    for (std::size_t supernode = 0; supernode < supernodes; ++supernode) {
+        const int first = super[supernode];
+        const int width = super[supernode + 1] - first;
+        const int rowCount = rowPointer[supernode + 1] - rowPointer[supernode];
+        const int* rowList = rows + rowPointer[supernode];
+        // CHOLMOD's block: column-major, rowCount rows, its first `width` rows the
+        // supernode's own columns.
+        const double* block = factorValues + valuePointer[supernode];
+        if (scratch) {
+            scratch->assign(block, block + static_cast<std::size_t>(rowCount) * width);
+            block = scratch->data();
         }
-    };
+        auto entry = [&](int row, int column) { return block[static_cast<std::size_t>(column) * rowCount + row]; };
+        Entry* out = values + layout.valueStart[supernode];
+        for (int r = 0; r < width; ++r) {
+            if (rowList[r] != first + r)
+                throw std::runtime_error("sparse Cholesky: unexpected factor layout in supernode " +
+                                         std::to_string(supernode));
+            for (int c = 0; c < r; ++c) *out++ = static_cast<Entry>(entry(r, c));
+            const double diagonal = entry(r, r);
+            if (!(diagonal > 0.0))
+                throw std::runtime_error("sparse Cholesky: the matrix is not positive definite (column " +
+                                         std::to_string(first + r) + " of the factor)");
+            *out++ = static_cast<Entry>(1.0 / diagonal);
+        }
+        int* belowOut = layout.belowRow.data() + layout.belowStart[supernode];
+        for (int r = width; r < rowCount; ++r) *belowOut++ = rowList[r];
+        for (int c = 0; c < width; ++c)
+            for (int r = width; r < rowCount; ++r) *out++ = static_cast<Entry>(entry(r, c));
+    }
+}
+
+// Whether CHOLMOD's supernode blocks lie back to back from the start of its real array.
+bool blocksContiguous(const cholmod_factor& factor)
+{
+    const auto* super = static_cast<const int*>(factor.super);
+    const auto* rowPointer = static_cast<const int*>(factor.pi);
+    const auto* valuePointer = static_cast<const int*>(factor.px);
+    const std::size_t supernodes = factor.nsuper;
+    bool contiguous = factor.xtype == CHOLMOD_REAL && valuePointer[0] == 0;
+    for (std::size_t supernode = 0; supernode < supernodes && contiguous; ++supernode)
+        contiguous = valuePointer[supernode + 1] - valuePointer[supernode] ==
+                     (rowPointer[supernode + 1] - rowPointer[supernode]) * (super[supernode + 1] - super[supernode]);
+    return contiguous;
+}
+
+// The single-precision entries written over CHOLMOD's own array, which is taken from the
+// factor and shrunk; returns it (SuiteSparse-allocated).
+float* copyFactorInPlace(CholmodSession& session, const FactorLayout& layout, std::size_t valueTotal)
+{
+    std::vector<double> scratch;
+    float* values = static_cast<float*>(session.factor_->x);
+    copyFactor(*session.factor_, layout, values, &scratch);
+    session.factor_->x = nullptr;  // rbm's now (CHOLMOD frees no null array)
+    int shrunk = 0;
+    void* kept = SuiteSparse_realloc(valueTotal, 2 * session.factor_->xsize, sizeof(float), values, &shrunk);
+    return static_cast<float*>(kept);
+}
+
+} // namespace
+#endif
+
+SparseCholesky::SparseCholesky(int n, std::span<const int> rowOffsets, std::span<const int> columns,
+                               std::span<const double> values, FactorPrecision precision)
+    : size_(n), precision_(precision)
+{
+#if !defined(RBM_HAVE_CHOLMOD)
+    (void)rowOffsets;
+    (void)columns;
+    (void)values;
+    (void)precision;
+    throw std::runtime_error("sparse Cholesky: this build has no CHOLMOD (install libsuitesparse-dev and rebuild)");
+#else
+    if (n < 0 || rowOffsets.size() != static_cast<std::size_t>(n) + 1 || columns.size() != values.size() ||
+        static_cast<std::size_t>(rowOffsets[n]) != columns.size())
+        throw std::invalid_argument("sparse Cholesky: inconsistent compressed rows");
+    CholmodSession session;
+    copyUpperTriangle(session, n, rowOffsets, columns, values);
+    factorise(session, n);
+    const cholmod_factor& factor = *session.factor_;
+    const auto* permutation = static_cast<const int*>(factor.Perm);
+    const FactorLayout layout{supernodeStart_, belowStart_, belowRow_, valueStart_};
+    const std::size_t valueTotal = computeLayout(factor, layout);
     if (precision_ == FactorPrecision::single) {
         // Over CHOLMOD's own array, which rbm then keeps (shrunk to the single-precision
         // entries): no second allocation of L's size. Supernode s's entries start at float
@@ -193,26 +252,16 @@ SparseCholesky::SparseCholesky(int n, std::span<const int> rowOffsets, std::span
         // supernode's own block is read into scratch first. A second array would be fresh
         // pages of the factor's size, which the kernel zeroes, a large part of the set-up on
         // big 2D meshes (rbmBenchmark's quad2D case at 10⁶ nodes).
-        bool contiguous = factor.xtype == CHOLMOD_REAL && valuePointer[0] == 0;
-        for (std::size_t supernode = 0; supernode < supernodes && contiguous; ++supernode)
-            contiguous = valuePointer[supernode + 1] - valuePointer[supernode] ==
-                         (rowPointer[supernode + 1] - rowPointer[supernode]) * (super[supernode + 1] - super[supernode]);
-        if (contiguous && valueTotal > 0) {
-            std::vector<double> scratch;
-            float* values = static_cast<float*>(session.factor_->x);
-            copyFactor(values, &scratch);
-            session.factor_->x = nullptr;  // rbm's now (CHOLMOD frees no null array)
-            int shrunk = 0;
-            void* kept = SuiteSparse_realloc(valueTotal, 2 * session.factor_->xsize, sizeof(float), values, &shrunk);
-            singleValue_.reset(static_cast<float*>(kept));
+        if (blocksContiguous(factor) && valueTotal > 0) {
+            singleValue_.reset(copyFactorInPlace(session, layout, valueTotal));
         } else {
             singleValue_.reset(static_cast<float*>(SuiteSparse_malloc(std::max<std::size_t>(valueTotal, 1), sizeof(float))));
             if (!singleValue_) throw std::runtime_error("sparse Cholesky: out of memory for the factor's entries");
-            copyFactor(singleValue_.get(), nullptr);
+            copyFactor(factor, layout, singleValue_.get(), nullptr);
         }
     } else {
         value_.resize(valueTotal);
-        copyFactor(value_.data(), nullptr);
+        copyFactor(factor, layout, value_.data(), nullptr);
     }
     permutation_.assign(permutation, permutation + n);
 #endif

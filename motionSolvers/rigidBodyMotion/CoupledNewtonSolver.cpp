@@ -233,6 +233,130 @@ CoupledNewtonSolver::CoupledNewtonSolver(const RbmProblem& problem, CoupledNewto
 
 CoupledNewtonSolver::~CoupledNewtonSolver() = default;
 
+namespace {
+
+// Warm start from the previous time step, with a linear predictor for the change of
+// the boundary: guess + L⁻¹b(new) − L⁻¹b(old). Without it the boundary nodes jump
+// by the whole increment while their neighbours stay, which on boundary-layer cells
+// thinner than the increment is a tangled start and costs Newton tens of iterations.
+std::vector<double> warmStart(const RbmProblem& problem, CoupledLinearizedSolver& linearized,
+                              std::span<const Vector3> prescribedDisplacement, const RbmState& initialGuess,
+                              const std::vector<double>& coldStart, int& linearIterations)
+{
+    BlockSystemSolver::Report report;
+    std::vector<Vector3> previousBoundary(initialGuess.displacement.begin(), initialGuess.displacement.end());
+    const std::vector<double> previousLinear = linearized.solveUnknowns(previousBoundary, nullptr, report);
+    linearIterations += report.iterations;
+    std::vector<double> warm(problem.unknownCount(), 0.0);
+    packUnknowns(problem, initialGuess, warm);
+    for (std::size_t k = 0; k < warm.size(); ++k) warm[k] += coldStart[k] - previousLinear[k];
+    // Moved onto the sliding planes: u ← c n + P (u − c n).
+    std::vector<double> offset(warm.size());
+    problem.slidingOffset(prescribedDisplacement, offset);
+    for (std::size_t k = 0; k < warm.size(); ++k) warm[k] -= offset[k];
+    problem.projectSliding(warm);
+    for (std::size_t k = 0; k < warm.size(); ++k) warm[k] += offset[k];
+    return warm;
+}
+
+// The starts Newton may take: the cold (linearized) one, and the warm one if there is a guess.
+std::vector<std::vector<double>> candidateStarts(const RbmProblem& problem, CoupledLinearizedSolver& linearized,
+                                                 std::span<const Vector3> prescribedDisplacement,
+                                                 const RbmState* initialGuess, int& linearIterations)
+{
+    BlockSystemSolver::Report report;
+    std::vector<std::vector<double>> candidates;
+    // Cold start: the linearized solution (one solve with the factorisation kept).
+    std::vector<double> coldStart = linearized.solveUnknowns(prescribedDisplacement, nullptr, report);
+    linearIterations += report.iterations;
+    if (initialGuess) {
+        std::vector<double> warm =
+            warmStart(problem, linearized, prescribedDisplacement, *initialGuess, coldStart, linearIterations);
+        // Whichever start has the lower energy (both with re-fitted rotations, below).
+        candidates.push_back(std::move(coldStart));
+        candidates.push_back(std::move(warm));
+    } else {
+        candidates.push_back(std::move(coldStart));
+    }
+    return candidates;
+}
+
+// Re-fits the rotations of unknowns to its displacements; returns the largest angle changed.
+double refitRotations(const RbmProblem& problem, std::span<const Vector3> prescribedDisplacement,
+                      std::vector<double>& unknowns, std::vector<Matrix3>& fitted)
+{
+    const int dim = problem.dimension();
+    const int bs = problem.blockSize();
+    const RbmState state = unpackUnknowns(problem, prescribedDisplacement, unknowns);
+    fitNodeRotations(problem, state.displacement, fitted);
+    double largest = 0.0;
+    for (int a = 0; a < problem.unknownNodeCount(); ++a) {
+        const int node = problem.unknownNodes()[a];
+        const Vector3 parameters = rotationParameters(dim, fitted[node]);
+        double* block = unknowns.data() + static_cast<std::size_t>(a) * bs + dim;
+        const Matrix3 current = dim == 2 ? planarRotation(block[0]) : rotationFromVector({block[0], block[1], block[2]});
+        const Matrix3 relative = fitted[node].transposed() * current;
+        const double cosine = 0.5 * (relative.m[0][0] + relative.m[1][1] + relative.m[2][2] - 1.0);
+        largest = std::max(largest, std::acos(std::clamp(cosine, -1.0, 1.0)));
+        if (dim == 2) block[0] = parameters.z;
+        else for (int k = 0; k < 3; ++k) block[k] = parameters[k];
+    }
+    return largest;
+}
+
+// Rotations re-fitted to each candidate's displacements; Newton starts from the lowest energy.
+std::vector<double> lowestEnergyStart(const RbmProblem& problem, std::span<const Vector3> prescribedDisplacement,
+                                      const RbmEnergy& energyOf, std::vector<std::vector<double>>& candidates,
+                                      std::vector<Matrix3>& fitted)
+{
+    double lowestEnergy = std::numeric_limits<double>::infinity();
+    std::vector<double> start;
+    for (std::vector<double>& candidate : candidates) {
+        refitRotations(problem, prescribedDisplacement, candidate, fitted);
+        const double energy = energyOf.value(candidate);
+        if (start.empty() || energy < lowestEnergy) {  // the first even when no energy is finite
+            lowestEnergy = energy;
+            start = candidate;
+        }
+    }
+    return start;
+}
+
+// What the restarted Newton solve ended with.
+struct NewtonOutcome {
+    SNESConvergedReason reason = SNES_CONVERGED_ITERATING;
+    int restarts = 0;
+};
+
+// Newton from start, restarted from the re-fitted state while it converges to rotations that
+// differ from their fits (at most maximumRestarts times); the solution is left in unknowns.
+NewtonOutcome solveWithRestarts(const RbmProblem& problem, std::span<const Vector3> prescribedDisplacement,
+                                SNES snes, Vec solution, Context& context, std::vector<double> start,
+                                std::vector<Matrix3>& fitted, std::vector<double>& unknowns, RbmResult& result)
+{
+    const int bs = problem.blockSize();
+    constexpr int maximumRestarts = 3;
+    NewtonOutcome outcome;
+    for (;;) {
+        context.layout->scatter(start, solution, bs);
+        RBM_CHECK_PETSC(SNESSolve(snes, nullptr, solution));
+        PetscInt iterations = 0, linearIterations = 0;
+        RBM_CHECK_PETSC(SNESGetIterationNumber(snes, &iterations));
+        RBM_CHECK_PETSC(SNESGetLinearSolveIterations(snes, &linearIterations));
+        RBM_CHECK_PETSC(SNESGetConvergedReason(snes, &outcome.reason));
+        result.iterations += static_cast<int>(iterations);
+        result.linearIterations += static_cast<int>(linearIterations);
+        context.layout->gather(solution, unknowns, bs);
+        if (outcome.reason <= 0 || outcome.restarts == maximumRestarts) break;
+        start = unknowns;
+        if (refitRotations(problem, prescribedDisplacement, start, fitted) < 1e-6) break;
+        ++outcome.restarts;
+    }
+    return outcome;
+}
+
+} // namespace
+
 RbmResult CoupledNewtonSolver::solve(std::span<const Vector3> prescribedDisplacement, const RbmState* initialGuess)
 {
     problem_.checkNodeArray(prescribedDisplacement, "prescribed displacement");
@@ -243,34 +367,8 @@ RbmResult CoupledNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
         linearOptions.linearSolver = options_.linearSolver;
         linearized_ = std::make_unique<CoupledLinearizedSolver>(problem_, linearOptions);
     }
-    BlockSystemSolver::Report report;
-    std::vector<std::vector<double>> candidateStarts;
-    // Cold start: the linearized solution (one solve with the factorisation kept).
-    std::vector<double> coldStart = linearized_->solveUnknowns(prescribedDisplacement, nullptr, report);
-    result.linearIterations += report.iterations;
-    if (initialGuess) {
-        // Warm start from the previous time step, with a linear predictor for the change of
-        // the boundary: guess + L⁻¹b(new) − L⁻¹b(old). Without it the boundary nodes jump
-        // by the whole increment while their neighbours stay, which on boundary-layer cells
-        // thinner than the increment is a tangled start and costs Newton tens of iterations.
-        std::vector<Vector3> previousBoundary(initialGuess->displacement.begin(), initialGuess->displacement.end());
-        const std::vector<double> previousLinear = linearized_->solveUnknowns(previousBoundary, nullptr, report);
-        result.linearIterations += report.iterations;
-        std::vector<double> warm(problem_.unknownCount(), 0.0);
-        packUnknowns(problem_, *initialGuess, warm);
-        for (std::size_t k = 0; k < warm.size(); ++k) warm[k] += coldStart[k] - previousLinear[k];
-        // Moved onto the sliding planes: u ← c n + P (u − c n).
-        std::vector<double> offset(warm.size());
-        problem_.slidingOffset(prescribedDisplacement, offset);
-        for (std::size_t k = 0; k < warm.size(); ++k) warm[k] -= offset[k];
-        problem_.projectSliding(warm);
-        for (std::size_t k = 0; k < warm.size(); ++k) warm[k] += offset[k];
-        // Whichever start has the lower energy (both with re-fitted rotations, below).
-        candidateStarts.push_back(std::move(coldStart));
-        candidateStarts.push_back(std::move(warm));
-    } else {
-        candidateStarts.push_back(std::move(coldStart));
-    }
+    std::vector<std::vector<double>> candidates =
+        candidateStarts(problem_, *linearized_, prescribedDisplacement, initialGuess, result.linearIterations);
 
     context_->energy.emplace(problem_, RotationModel::exact, prescribedDisplacement);
     context_->gaussNewtonSteps = 0;
@@ -281,62 +379,19 @@ RbmResult CoupledNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
     // their fits is a saddle point with flipped node frames (docs/method.md §2); Newton is
     // restarted from the re-fitted state (at most maximumRestarts times).
     std::vector<Matrix3> fitted;
-    const int dim = problem_.dimension();
-    const int bs = problem_.blockSize();
-    auto largestRotationMismatch = [&](std::vector<double>& unknowns) {
-        const RbmState state = unpackUnknowns(problem_, prescribedDisplacement, unknowns);
-        fitNodeRotations(problem_, state.displacement, fitted);
-        double largest = 0.0;
-        for (int a = 0; a < problem_.unknownNodeCount(); ++a) {
-            const int node = problem_.unknownNodes()[a];
-            const Vector3 parameters = rotationParameters(dim, fitted[node]);
-            double* block = unknowns.data() + static_cast<std::size_t>(a) * bs + dim;
-            const Matrix3 current = dim == 2 ? planarRotation(block[0]) : rotationFromVector({block[0], block[1], block[2]});
-            const Matrix3 relative = fitted[node].transposed() * current;
-            const double cosine = 0.5 * (relative.m[0][0] + relative.m[1][1] + relative.m[2][2] - 1.0);
-            largest = std::max(largest, std::acos(std::clamp(cosine, -1.0, 1.0)));
-            if (dim == 2) block[0] = parameters.z;
-            else for (int k = 0; k < 3; ++k) block[k] = parameters[k];
-        }
-        return largest;
-    };
-    // Rotations re-fitted to each candidate's displacements; Newton starts from the lowest energy.
-    double lowestEnergy = std::numeric_limits<double>::infinity();
-    std::vector<double> start;
-    for (std::vector<double>& candidate : candidateStarts) {
-        largestRotationMismatch(candidate);
-        const double energy = context_->energy->value(candidate);
-        if (start.empty() || energy < lowestEnergy) {  // the first even when no energy is finite
-            lowestEnergy = energy;
-            start = candidate;
-        }
-    }
-
-    constexpr int maximumRestarts = 3;
-    int restarts = 0;
-    SNESConvergedReason reason = SNES_CONVERGED_ITERATING;
+    std::vector<double> start =
+        lowestEnergyStart(problem_, prescribedDisplacement, *context_->energy, candidates, fitted);
     std::vector<double> unknowns(problem_.unknownCount());
-    for (;;) {
-        context_->layout->scatter(start, solution_, bs);
-        RBM_CHECK_PETSC(SNESSolve(snes_, nullptr, solution_));
-        PetscInt iterations = 0, linearIterations = 0;
-        RBM_CHECK_PETSC(SNESGetIterationNumber(snes_, &iterations));
-        RBM_CHECK_PETSC(SNESGetLinearSolveIterations(snes_, &linearIterations));
-        RBM_CHECK_PETSC(SNESGetConvergedReason(snes_, &reason));
-        result.iterations += static_cast<int>(iterations);
-        result.linearIterations += static_cast<int>(linearIterations);
-        context_->layout->gather(solution_, unknowns, bs);
-        if (reason <= 0 || restarts == maximumRestarts) break;
-        start = unknowns;
-        if (largestRotationMismatch(start) < 1e-6) break;
-        ++restarts;
-    }
+    const NewtonOutcome outcome = solveWithRestarts(problem_, prescribedDisplacement, snes_, solution_, *context_,
+                                                    std::move(start), fitted, unknowns, result);
+
     static_cast<RbmState&>(result) = unpackUnknowns(problem_, prescribedDisplacement, unknowns);
-    result.converged = reason > 0;
-    result.reason = convergedReasonText(reason);
+    result.converged = outcome.reason > 0;
+    result.reason = convergedReasonText(outcome.reason);
     if (context_->gaussNewtonSteps > 0)
         result.reason += " (" + std::to_string(context_->gaussNewtonSteps) + " Gauss-Newton steps)";
-    if (restarts > 0) result.reason += " (" + std::to_string(restarts) + " restarts from re-fitted rotations)";
+    if (outcome.restarts > 0)
+        result.reason += " (" + std::to_string(outcome.restarts) + " restarts from re-fitted rotations)";
     result.energy = context_->energy->value(unknowns);
     result.residualNorm = context_->energy->projectedGradientNorm(unknowns);
     return result;

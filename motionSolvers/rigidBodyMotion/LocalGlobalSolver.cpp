@@ -437,6 +437,211 @@ private:
     std::vector<double> previousF_, previousG_;
 };
 
+// Sliding offsets c n of the unknown nodes (compact numbering).
+std::vector<Vector3> compactSlidingOffset(const RbmProblem& problem, std::span<const Vector3> prescribedDisplacement)
+{
+    const int m = problem.unknownNodeCount();
+    const int dim = problem.dimension();
+    std::vector<Vector3> offset(m);
+    std::vector<double> flat(static_cast<std::size_t>(m) * dim);
+    problem.slidingOffset(prescribedDisplacement, flat, dim);
+    for (int a = 0; a < m; ++a)
+        for (int q = 0; q < dim; ++q) offset[a][q] = flat[static_cast<std::size_t>(a) * dim + q];
+    return offset;
+}
+
+// All nodes' displacements with the prescribed ones filled in and the unknown ones zero.
+std::vector<Vector3> prescribedPart(const RbmProblem& problem, std::span<const Vector3> prescribedDisplacement)
+{
+    const int n = problem.nodeCount();
+    std::vector<Vector3> u(n);
+    for (int node = 0; node < n; ++node) {
+        if (problem.isUnknown(node)) continue;
+        u[node] = prescribedDisplacement[node];
+        if (problem.dimension() == 2) u[node].z = 0.0;
+    }
+    return u;
+}
+
+// The initial guess's unknown displacements, sliding nodes put back on their planes (lines).
+void applyInitialGuess(const RbmProblem& problem, const RbmState& initialGuess, std::span<const Vector3> offset,
+                       std::vector<Vector3>& u)
+{
+    problem.checkNodeArray(initialGuess.displacement, "initial guess displacement");
+    const std::vector<int>& nodes = problem.unknownNodes();
+    for (int a = 0; a < problem.unknownNodeCount(); ++a) {
+        Vector3 guess = initialGuess.displacement[nodes[a]];
+        if (problem.dimension() == 2) guess.z = 0.0;
+        if (problem.kind(nodes[a]) == NodeKind::sliding)
+            guess = offset[a] + (guess - problem.slidingNormalPart(nodes[a], guess));
+        u[nodes[a]] = guess;
+    }
+}
+
+// The unknown nodes' displacements as one flat vector (compact numbering, dimension values a node) and back.
+class CompactLayout {
+public:
+    CompactLayout(const RbmProblem& problem, std::span<const Vector3> offset)
+        : problem_(problem), nodes_(problem.unknownNodes()), m_(problem.unknownNodeCount()),
+          dim_(problem.dimension()), offset_(offset)
+    {
+    }
+
+    std::size_t size() const { return static_cast<std::size_t>(m_) * dim_; }
+    int nodeCount() const { return m_; }
+    const std::vector<int>& nodes() const { return nodes_; }
+
+    void flatten(const std::vector<Vector3>& displacement, std::vector<double>& flat) const
+    {
+        flat.resize(size());
+        for (int a = 0; a < m_; ++a)
+            for (int q = 0; q < dim_; ++q) flat[static_cast<std::size_t>(a) * dim_ + q] = displacement[nodes_[a]][q];
+    }
+
+    void unflatten(const std::vector<double>& flat, std::vector<Vector3>& displacement) const
+    {
+        for (int a = 0; a < m_; ++a) {
+            Vector3& value = displacement[nodes_[a]];
+            for (int q = 0; q < dim_; ++q) value[q] = flat[static_cast<std::size_t>(a) * dim_ + q];
+            if (problem_.kind(nodes_[a]) == NodeKind::sliding)  // back onto the plane (line) exactly
+                value -= problem_.slidingNormalPart(nodes_[a], value - offset_[a]);
+        }
+    }
+
+private:
+    const RbmProblem& problem_;
+    const std::vector<int>& nodes_;
+    int m_;
+    int dim_;
+    std::span<const Vector3> offset_;
+};
+
+// The coupled energy of the displacements with the fitted rotations. Per-edge terms computed
+// by the threads, summed in edge order (the same sum for any thread count).
+double coupledEnergy(const RbmProblem& problem, const std::vector<Vector3>& displacement,
+                     const std::vector<Matrix3>& fitted, std::vector<double>& edgeTerms)
+{
+    const int m = problem.unknownNodeCount();
+    const int dim = problem.dimension();
+    const std::vector<int>& nodes = problem.unknownNodes();
+    const CellNeighbourGraph& graph = problem.graph();
+#pragma omp parallel for schedule(static) if (worthThreading(problem.graph().neighbours.size()))
+    for (int a = 0; a < m; ++a) {
+        const int i = nodes[a];
+        for (int e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e) {
+            const int j = graph.neighbours[e];
+            Vector3 d = problem.referencePoints()[j] - problem.referencePoints()[i];
+            if (dim == 2) d.z = 0.0;
+            edgeTerms[e] = problem.edgeWeights()[e] * normSquared(displacement[j] - displacement[i] + d - fitted[i] * d);
+        }
+    }
+    double sum = 0.0;
+    for (int i : nodes)
+        for (int e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e) sum += edgeTerms[e];
+    return 0.5 * sum;
+}
+
+// What the accelerated iteration carries from one pass to the next.
+struct AcceleratedState {
+    AcceleratedState(const RbmProblem& problem, int depth)
+        : mixing(std::max(0, depth)), edgeTerms(problem.graph().neighbours.size())
+    {
+    }
+
+    AndersonMixing mixing;
+    std::vector<double> edgeTerms;
+    std::vector<Vector3> mixed, fallback;  // fallback: the plain step of the last accepted point
+    std::vector<double> flatU, flatG, f, flatMixed;
+    std::vector<Matrix3> mixedRotations;
+    double currentEnergy = 0.0;
+    double previousResidual = std::numeric_limits<double>::infinity();
+    bool candidate = false;  // decoupled: u is an accelerated point still to be checked
+    int accelerated = 0;
+};
+
+// The plain step's squared residual ‖G(u) − u‖² and the largest node move.
+struct PlainStep {
+    double residual;
+    double change;
+};
+
+// Measures the plain step g = G(u); leaves f = G(u) − u and the flat u, g in the state.
+PlainStep measurePlainStep(const CompactLayout& layout, const std::vector<Vector3>& u, const std::vector<Vector3>& g,
+                           AcceleratedState& state)
+{
+    layout.flatten(u, state.flatU);
+    layout.flatten(g, state.flatG);
+    const std::size_t size = layout.size();
+    state.f.resize(size);
+    double residual = 0.0;
+    for (std::size_t k = 0; k < size; ++k) {
+        state.f[k] = state.flatG[k] - state.flatU[k];
+        residual += state.f[k] * state.f[k];
+    }
+    double change = 0.0;
+    const std::vector<int>& nodes = layout.nodes();
+    for (int a = 0; a < layout.nodeCount(); ++a) change = std::max(change, norm(g[nodes[a]] - u[nodes[a]]));
+    return {residual, change};
+}
+
+// The reason text of a converged iteration.
+std::string convergedReason(double change, int iteration, int accelerated)
+{
+    std::ostringstream reason;
+    reason << "CONVERGED_DISPLACEMENT_CHANGE (" << change << " after " << iteration << " iterations";
+    if (accelerated > 0) reason << ", " << accelerated << " accelerated";
+    reason << ")";
+    return reason.str();
+}
+
+// Moves u to the Anderson-mixed point if the safeguard takes it, else to the plain step g.
+void advance(const LaggedRotationIteration& iteration, const RbmProblem& problem, LaplacianForm form, int depth,
+             const CompactLayout& layout, const std::vector<Vector3>& g, std::vector<Vector3>& u,
+             std::vector<Matrix3>& rotations, AcceleratedState& state)
+{
+    bool tookAcceleration = false;
+    if (depth > 0 && state.mixing.mix(state.f, state.flatG, state.flatMixed)) {
+        state.mixed = g;
+        layout.unflatten(state.flatMixed, state.mixed);
+        iteration.fitRotations(state.mixed, state.mixedRotations);
+        if (form == LaplacianForm::coupled) {
+            const double mixedEnergy = coupledEnergy(problem, state.mixed, state.mixedRotations, state.edgeTerms);
+            if (mixedEnergy < state.currentEnergy) {
+                state.currentEnergy = mixedEnergy;
+                tookAcceleration = true;
+            }
+        } else {
+            state.fallback = g;
+            state.candidate = true;
+            tookAcceleration = true;
+        }
+        if (tookAcceleration) {
+            u.swap(state.mixed);
+            rotations.swap(state.mixedRotations);
+            ++state.accelerated;
+        } else {
+            state.mixing.clear();
+        }
+    }
+    if (!tookAcceleration) {
+        u = g;
+        iteration.fitRotations(u, rotations);
+        if (form == LaplacianForm::coupled) state.currentEnergy = coupledEnergy(problem, u, rotations, state.edgeTerms);
+    }
+}
+
+// The result's displacement, rotation parameters and exact energy at the final iterate.
+void finishResult(const RbmProblem& problem, std::span<const Vector3> prescribedDisplacement,
+                  const std::vector<Vector3>& u, const std::vector<Matrix3>& rotations, RbmResult& result)
+{
+    result.displacement = u;
+    result.rotation.assign(problem.nodeCount(), Vector3{});
+    for (int node : problem.unknownNodes()) result.rotation[node] = rotationParameters(problem.dimension(), rotations[node]);
+    std::vector<double> unknowns(problem.unknownCount());
+    packUnknowns(problem, result, unknowns);
+    result.energy = RbmEnergy(problem, RotationModel::exact, prescribedDisplacement).value(unknowns);
+}
+
 } // namespace
 
 RbmResult LaggedRotationIteration::run(std::span<const Vector3> prescribedDisplacement, const RbmState* initialGuess)
@@ -444,36 +649,13 @@ RbmResult LaggedRotationIteration::run(std::span<const Vector3> prescribedDispla
     problem_.checkNodeArray(prescribedDisplacement, "prescribed displacement");
     if (problem_.unknownNodeCount() == 0) return prescribedOnlyResult(problem_, prescribedDisplacement);
     const int n = problem_.nodeCount();
-    const int m = problem_.unknownNodeCount();
-    const int dim = problem_.dimension();
-    const std::vector<int>& nodes = problem_.unknownNodes();
-
-    // Sliding offsets c n (compact numbering).
-    std::vector<Vector3> offset(m);
-    {
-        std::vector<double> flat(static_cast<std::size_t>(m) * dim);
-        problem_.slidingOffset(prescribedDisplacement, flat, dim);
-        for (int a = 0; a < m; ++a)
-            for (int q = 0; q < dim; ++q) offset[a][q] = flat[static_cast<std::size_t>(a) * dim + q];
-    }
+    const std::vector<Vector3> offset = compactSlidingOffset(problem_, prescribedDisplacement);
 
     RbmResult result;
-    std::vector<Vector3> u(n);
-    for (int node = 0; node < n; ++node) {
-        if (problem_.isUnknown(node)) continue;
-        u[node] = prescribedDisplacement[node];
-        if (dim == 2) u[node].z = 0.0;
-    }
+    std::vector<Vector3> u = prescribedPart(problem_, prescribedDisplacement);
     std::vector<Matrix3> rotations(n, Matrix3::identity());
     if (initialGuess) {
-        problem_.checkNodeArray(initialGuess->displacement, "initial guess displacement");
-        for (int a = 0; a < m; ++a) {
-            Vector3 guess = initialGuess->displacement[nodes[a]];
-            if (dim == 2) guess.z = 0.0;
-            if (problem_.kind(nodes[a]) == NodeKind::sliding)
-                guess = offset[a] + (guess - problem_.slidingNormalPart(nodes[a], guess));
-            u[nodes[a]] = guess;
-        }
+        applyInitialGuess(problem_, *initialGuess, offset, u);
     } else {
         // Harmonic start: the global step with every rotation the identity.
         std::string failure;
@@ -486,6 +668,16 @@ RbmResult LaggedRotationIteration::run(std::span<const Vector3> prescribedDispla
         }
     }
 
+    const std::vector<Vector3> b = iterate(prescribedDisplacement, offset, u, rotations, result);
+    result.residualNorm = residualNorm(u, b);
+    finishResult(problem_, prescribedDisplacement, u, rotations, result);
+    return result;
+}
+
+std::vector<Vector3> LaggedRotationIteration::iterate(std::span<const Vector3> prescribedDisplacement,
+                                                      std::span<const Vector3> offset, std::vector<Vector3>& u,
+                                                      std::vector<Matrix3>& rotations, RbmResult& result)
+{
     // The iteration u ← G(u) = global(local(u)), accelerated by Anderson mixing (Peng et al.
     // 2018, "Anderson acceleration for geometry optimization and physics simulation").
     // Safeguards: for the coupled form an accelerated point is taken only if it lowers the
@@ -493,52 +685,14 @@ RbmResult LaggedRotationIteration::run(std::span<const Vector3> prescribedDispla
     // energy, only if its residual turns out smaller than the one before. Otherwise the
     // plain step is taken and the history cleared.
     const double tolerance = options_.displacementTolerance * problem_.minimumEdgeLength();
-    const std::size_t size = static_cast<std::size_t>(m) * dim;
-    auto flatten = [&](const std::vector<Vector3>& displacement, std::vector<double>& flat) {
-        flat.resize(size);
-        for (int a = 0; a < m; ++a)
-            for (int q = 0; q < dim; ++q) flat[static_cast<std::size_t>(a) * dim + q] = displacement[nodes[a]][q];
-    };
-    auto unflatten = [&](const std::vector<double>& flat, std::vector<Vector3>& displacement) {
-        for (int a = 0; a < m; ++a) {
-            Vector3& value = displacement[nodes[a]];
-            for (int q = 0; q < dim; ++q) value[q] = flat[static_cast<std::size_t>(a) * dim + q];
-            if (problem_.kind(nodes[a]) == NodeKind::sliding)  // back onto the plane (line) exactly
-                value -= problem_.slidingNormalPart(nodes[a], value - offset[a]);
-        }
-    };
-    // Per-edge terms computed by the threads, summed in edge order (the same sum for any
-    // thread count).
-    std::vector<double> edgeTerms(problem_.graph().neighbours.size());
-    auto energyOf = [&](const std::vector<Vector3>& displacement, const std::vector<Matrix3>& fitted) {
-        const CellNeighbourGraph& graph = problem_.graph();
-#pragma omp parallel for schedule(static) if (worthThreading(problem_.graph().neighbours.size()))
-        for (int a = 0; a < m; ++a) {
-            const int i = nodes[a];
-            for (int e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e) {
-                const int j = graph.neighbours[e];
-                Vector3 d = problem_.referencePoints()[j] - problem_.referencePoints()[i];
-                if (dim == 2) d.z = 0.0;
-                edgeTerms[e] = problem_.edgeWeights()[e] * normSquared(displacement[j] - displacement[i] + d - fitted[i] * d);
-            }
-        }
-        double sum = 0.0;
-        for (int i : nodes)
-            for (int e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e) sum += edgeTerms[e];
-        return 0.5 * sum;
-    };
-
-    AndersonMixing mixing(std::max(0, options_.accelerationDepth));
-    std::vector<Vector3> b, g(n), mixed, fallback;  // fallback: the plain step of the last accepted point
-    std::vector<double> flatU, flatG, f, flatMixed;
-    std::vector<Matrix3> mixedRotations;
+    const CompactLayout layout(problem_, offset);
+    AcceleratedState state(problem_, options_.accelerationDepth);
+    std::vector<Vector3> b, g(problem_.nodeCount());
     fitRotations(u, rotations);
-    double currentEnergy = form_ == LaplacianForm::coupled ? energyOf(u, rotations) : 0.0;
-    double previousResidual = std::numeric_limits<double>::infinity();
-    bool candidate = false;  // decoupled: u is an accelerated point still to be checked
+    state.currentEnergy =
+        form_ == LaplacianForm::coupled ? coupledEnergy(problem_, u, rotations, state.edgeTerms) : 0.0;
     result.converged = false;
     int iteration = 0;
-    int accelerated = 0;
     for (;;) {
         b = rightHandSide(prescribedDisplacement, rotations);
         if (iteration >= options_.maximumIterations) {
@@ -554,83 +708,33 @@ RbmResult LaggedRotationIteration::run(std::span<const Vector3> prescribedDispla
             break;
         }
         ++iteration;
-        flatten(u, flatU);
-        flatten(g, flatG);
-        f.resize(size);
-        double residual = 0.0;
-        for (std::size_t k = 0; k < size; ++k) {
-            f[k] = flatG[k] - flatU[k];
-            residual += f[k] * f[k];
-        }
-        double change = 0.0;
-        for (int a = 0; a < m; ++a) change = std::max(change, norm(g[nodes[a]] - u[nodes[a]]));
-        if (!std::isfinite(change)) {
+        const PlainStep step = measurePlainStep(layout, u, g, state);
+        if (!std::isfinite(step.change)) {
             result.reason = "DIVERGED_NAN";
             break;
         }
-        if (candidate && !(residual < previousResidual)) {
+        if (state.candidate && !(step.residual < state.previousResidual)) {
             // Decoupled safeguard: the accelerated point did worse; back to the plain step.
-            u = fallback;
+            u = state.fallback;
             fitRotations(u, rotations);
-            mixing.clear();
-            candidate = false;
+            state.mixing.clear();
+            state.candidate = false;
             continue;
         }
-        candidate = false;
-        if (change <= tolerance) {
+        state.candidate = false;
+        if (step.change <= tolerance) {
             u = g;  // the plain step from a converged point
             fitRotations(u, rotations);
             b = rightHandSide(prescribedDisplacement, rotations);
             result.converged = true;
-            std::ostringstream reason;
-            reason << "CONVERGED_DISPLACEMENT_CHANGE (" << change << " after " << iteration << " iterations";
-            if (accelerated > 0) reason << ", " << accelerated << " accelerated";
-            reason << ")";
-            result.reason = reason.str();
+            result.reason = convergedReason(step.change, iteration, state.accelerated);
             break;
         }
-        previousResidual = residual;
-
-        bool tookAcceleration = false;
-        if (options_.accelerationDepth > 0 && mixing.mix(f, flatG, flatMixed)) {
-            mixed = g;
-            unflatten(flatMixed, mixed);
-            fitRotations(mixed, mixedRotations);
-            if (form_ == LaplacianForm::coupled) {
-                const double mixedEnergy = energyOf(mixed, mixedRotations);
-                if (mixedEnergy < currentEnergy) {
-                    currentEnergy = mixedEnergy;
-                    tookAcceleration = true;
-                }
-            } else {
-                fallback = g;
-                candidate = true;
-                tookAcceleration = true;
-            }
-            if (tookAcceleration) {
-                u.swap(mixed);
-                rotations.swap(mixedRotations);
-                ++accelerated;
-            } else {
-                mixing.clear();
-            }
-        }
-        if (!tookAcceleration) {
-            u = g;
-            fitRotations(u, rotations);
-            if (form_ == LaplacianForm::coupled) currentEnergy = energyOf(u, rotations);
-        }
+        state.previousResidual = step.residual;
+        advance(*this, problem_, form_, options_.accelerationDepth, layout, g, u, rotations, state);
     }
     result.iterations = iteration;
-    result.residualNorm = residualNorm(u, b);
-
-    result.displacement = u;
-    result.rotation.assign(n, Vector3{});
-    for (int node : nodes) result.rotation[node] = rotationParameters(dim, rotations[node]);
-    std::vector<double> unknowns(problem_.unknownCount());
-    packUnknowns(problem_, result, unknowns);
-    result.energy = RbmEnergy(problem_, RotationModel::exact, prescribedDisplacement).value(unknowns);
-    return result;
+    return b;
 }
 
 // ---------------------------------------------------------------------------------------

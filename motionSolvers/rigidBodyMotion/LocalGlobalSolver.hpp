@@ -106,6 +106,9 @@ private:
     // Global step; returns false (with the Krylov reason in failure) if a solve failed.
     bool solveDisplacements(std::span<const Vector3> rightHandSide, std::span<const Vector3> offset,
                             std::vector<Vector3>& displacement, int& linearIterations, std::string& failure);
+    // The accelerated alternation from u (rotations fitted here); returns the last right-hand side.
+    std::vector<Vector3> iterate(std::span<const Vector3> prescribedDisplacement, std::span<const Vector3> offset,
+                                 std::vector<Vector3>& u, std::vector<Matrix3>& rotations, RbmResult& result);
 
     const RbmProblem& problem_;
     LaplacianForm form_;

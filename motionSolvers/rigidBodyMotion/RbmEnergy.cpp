@@ -326,6 +326,197 @@ double evaluateSerially(const RbmProblem& problem, RotationModel model, const st
     return energy;
 }
 
+// The threaded pass (evaluateThreaded) over one problem's arrays, split into its parts.
+class ThreadedPass {
+public:
+    ThreadedPass(const RbmProblem& problem, RotationModel model, const std::vector<Vector3>& prescribed,
+                 std::span<const double> unknowns, double* gradient, double* hessian, bool includeCurvature)
+        : model_(model), prescribed_(prescribed), unknowns_(unknowns), gradient_(gradient), hessian_(hessian),
+          includeCurvature_(includeCurvature), dim_(problem.dimension()), bs_(problem.blockSize()),
+          rotationCount_(problem.rotationSize()), unknownNodeCount_(problem.unknownNodeCount()),
+          nodes_(problem.unknownNodes()), graph_(problem.graph()), x_(problem.referencePoints()),
+          weights_(problem.edgeWeights()), unknownIndex_(problem.unknownIndex()), pattern_(problem.blockPattern()),
+          edgeBlock_(problem.edgeBlock()), edgeTransposeBlock_(problem.edgeTransposeBlock()),
+          blockArea_(static_cast<std::size_t>(bs_) * bs_)
+    {
+    }
+
+    // The whole pass: fills the gradient and Hessian asked for and returns the energy.
+    double run()
+    {
+        const int unknownNodeCount = unknownNodeCount_;
+        if (hessian_) zeroHessian();
+        edgeEnergy_.assign(graph_.neighbours.size(), 0.0);
+        // The gradient's u_i rows need every neighbour's rotation: computed first.
+        rotations_.assign(gradient_ ? static_cast<std::size_t>(unknownNodeCount) : 0, Matrix3{});
+        if (gradient_) computeRotations();
+
+#pragma omp parallel for schedule(static) if (worthThreading(graph_.neighbours.size()))
+        for (int a = 0; a < unknownNodeCount; ++a) visitCentre(a);
+
+        double energy = 0.0;
+        for (int i : nodes_)
+            for (int e = graph_.offsets[i]; e < graph_.offsets[i + 1]; ++e) energy += edgeEnergy_[e];
+        return energy;
+    }
+
+private:
+    // Zeroed by block rows; the passes below write disjoint entries of each block.
+    void zeroHessian()
+    {
+        const int unknownNodeCount = unknownNodeCount_;
+#pragma omp parallel for schedule(static) if (worthThreading(graph_.neighbours.size()))
+        for (int a = 0; a < unknownNodeCount; ++a)
+            std::fill(hessian_ + blockArea_ * pattern_.rowOffsets[a], hessian_ + blockArea_ * pattern_.rowOffsets[a + 1],
+                      0.0);
+    }
+
+    // Every unknown node's rotation R_i.
+    void computeRotations()
+    {
+        const int unknownNodeCount = unknownNodeCount_;
+#pragma omp parallel for schedule(static) if (worthThreading(graph_.neighbours.size()))
+        for (int a = 0; a < unknownNodeCount; ++a)
+            rotations_[a] =
+                rotationDerivatives(dim_, model_, unknowns_.data() + static_cast<std::size_t>(a) * bs_ + dim_).rotation;
+    }
+
+    // u of a node, prescribed or unknown.
+    Vector3 displacementOf(int node) const
+    {
+        const int b = unknownIndex_[node];
+        if (b < 0) return prescribed_[node];
+        const double* block = unknowns_.data() + static_cast<std::size_t>(b) * bs_;
+        return Vector3{block[0], block[1], dim_ == 3 ? block[2] : 0.0};
+    }
+
+    // d = x_to − x_from (in the plane in 2D).
+    Vector3 offsetOf(int from, int to) const
+    {
+        Vector3 d = x_[to] - x_[from];
+        if (dim_ == 2) d.z = 0.0;
+        return d;
+    }
+
+    // r of edge e = (i → j) with centre i's rotation.
+    Vector3 residualOf(int i, int j, const Matrix3& rotation, const Vector3& ui) const
+    {
+        const Vector3 d = offsetOf(i, j);
+        const Vector3 rotated = rotation * d;
+        return displacementOf(j) - ui + (d - rotated);
+    }
+
+    // Centre a's gradient rows, its Hessian blocks and its edges' energies.
+    void visitCentre(int a)
+    {
+        const int i = nodes_[a];
+        const double* block = unknowns_.data() + static_cast<std::size_t>(a) * bs_;
+        const RotationDerivatives rotation = rotationDerivatives(dim_, model_, block + dim_);
+        const Vector3 ui{block[0], block[1], dim_ == 3 ? block[2] : 0.0};
+        double* gi = gradient_ ? gradient_ + static_cast<std::size_t>(a) * bs_ : nullptr;
+        double* hii = hessian_ ? hessian_ + blockArea_ * pattern_.diagonal[a] : nullptr;
+        const int split = firstEdgeAfter(graph_, i);
+
+        if (gi) {
+            for (int k = 0; k < bs_; ++k) gi[k] = 0.0;
+            for (int e = graph_.offsets[i]; e < split; ++e) addIncoming(e, i, gi);
+        }
+        for (int e = graph_.offsets[i]; e < graph_.offsets[i + 1]; ++e) visitEdge(e, i, ui, rotation, gi, hii);
+        if (gi)
+            for (int e = split; e < graph_.offsets[i + 1]; ++e) addIncoming(e, i, gi);
+        if (hessian_) setDisplacementDiagonal(i, split, hii);
+    }
+
+    // +w r of the edge j → i of an unknown neighbour j (centre j's u_j-term of ∇).
+    void addIncoming(int e, int i, double* gi) const
+    {
+        const int j = graph_.neighbours[e];
+        const int b = unknownIndex_[j];
+        if (b < 0) return;
+        const double* blockJ = unknowns_.data() + static_cast<std::size_t>(b) * bs_;
+        const Vector3 uj{blockJ[0], blockJ[1], dim_ == 3 ? blockJ[2] : 0.0};
+        const double w = weights_[e];   // w_ji = w_ij (RbmProblem::edgeWeights)
+        const Vector3 r = residualOf(j, i, rotations_[b], uj);
+        for (int q = 0; q < dim_; ++q) gi[q] += w * r[q];
+    }
+
+    // Edge e = (i → j): its energy, its terms in centre i's gradient rows and the Hessian entries it owns.
+    void visitEdge(int e, int i, const Vector3& ui, const RotationDerivatives& rotation, double* gi, double* hii)
+    {
+        const int j = graph_.neighbours[e];
+        const double w = weights_[e];
+        const Vector3 d = offsetOf(i, j);
+        const Vector3 r = residualOf(i, j, rotation.rotation, ui);
+        edgeEnergy_[e] = 0.5 * w * normSquared(r);
+        if (!gradient_ && !hessian_) return;
+
+        std::array<Vector3, 3> derivative;  // a_k
+        for (int k = 0; k < rotationCount_; ++k) derivative[k] = rotation.first[k] * d;
+        const int b = unknownIndex_[j];
+
+        if (gradient_) {
+            for (int q = 0; q < dim_; ++q) gi[q] -= w * r[q];
+            for (int k = 0; k < rotationCount_; ++k) gi[dim_ + k] -= w * dot(derivative[k], r);
+        }
+        if (hessian_) {
+            // (u_i, φ_i), (φ_i, u_i), (φ_i, φ_i); the (u_i, u_i) diagonal is gathered below.
+            addRotationBlocks(hii, bs_, dim_, rotationCount_, derivative, rotation, r, d, w, includeCurvature_);
+            if (b >= 0) setOffDiagonalBlocks(e, w, derivative);
+        }
+    }
+
+    // Entries only this edge writes: (φ_i, u_j) of block (i, j), (u_j, φ_i) of
+    // block (j, i). The (u, u) diagonal of block (i, j) sums −w of both
+    // directions (w_ij = w_ji); with two terms the order does not matter.
+    void setOffDiagonalBlocks(int e, double w, const std::array<Vector3, 3>& derivative)
+    {
+        double* hij = hessian_ + blockArea_ * edgeBlock_[e];
+        double* hji = hessian_ + blockArea_ * edgeTransposeBlock_[e];
+        for (int q = 0; q < dim_; ++q) hij[q * bs_ + q] = (0.0 - w) - w;
+        for (int k = 0; k < rotationCount_; ++k) {
+            for (int q = 0; q < dim_; ++q) {
+                hij[(dim_ + k) * bs_ + q] = 0.0 - w * derivative[k][q];
+                hji[q * bs_ + dim_ + k] = 0.0 - w * derivative[k][q];
+            }
+        }
+    }
+
+    // (u_i, u_i) diagonal: w of the edges j → i of unknown j < i, then of i's own
+    // edges, then of unknown j > i.
+    void setDisplacementDiagonal(int i, int split, double* hii) const
+    {
+        double diagonal = 0.0;
+        for (int e = graph_.offsets[i]; e < split; ++e)
+            if (unknownIndex_[graph_.neighbours[e]] >= 0) diagonal += weights_[e];   // w_ji = w_ij
+        for (int e = graph_.offsets[i]; e < graph_.offsets[i + 1]; ++e) diagonal += weights_[e];
+        for (int e = split; e < graph_.offsets[i + 1]; ++e)
+            if (unknownIndex_[graph_.neighbours[e]] >= 0) diagonal += weights_[e];
+        for (int q = 0; q < dim_; ++q) hii[q * bs_ + q] = diagonal;
+    }
+
+    RotationModel model_;
+    const std::vector<Vector3>& prescribed_;
+    std::span<const double> unknowns_;
+    double* gradient_;
+    double* hessian_;
+    bool includeCurvature_;
+    int dim_;
+    int bs_;
+    int rotationCount_;
+    int unknownNodeCount_;
+    const std::vector<int>& nodes_;
+    const CellNeighbourGraph& graph_;
+    const std::vector<Vector3>& x_;
+    const std::vector<double>& weights_;
+    const std::vector<int>& unknownIndex_;
+    const BlockPattern& pattern_;
+    const std::vector<int>& edgeBlock_;
+    const std::vector<int>& edgeTransposeBlock_;
+    std::size_t blockArea_;
+    std::vector<double> edgeEnergy_;
+    std::vector<Matrix3> rotations_;
+};
+
 // The same pass shared out over threads (ThreadCount.hpp), bitwise equal to it for any
 // thread count: every sum is formed in the serial pass's order — centres ascending, each
 // centre's edges in order. The terms an edge gives the other end (u_j of ∇, the u_j
@@ -338,134 +529,7 @@ double evaluateSerially(const RbmProblem& problem, RotationModel model, const st
 double evaluateThreaded(const RbmProblem& problem, RotationModel model, const std::vector<Vector3>& prescribed,
                         std::span<const double> unknowns, double* gradient, double* hessian, bool includeCurvature)
 {
-    const int dim = problem.dimension();
-    const int bs = problem.blockSize();
-    const int rotationCount = problem.rotationSize();
-    const int unknownNodeCount = problem.unknownNodeCount();
-    const std::vector<int>& nodes = problem.unknownNodes();
-    const CellNeighbourGraph& graph = problem.graph();
-    const std::vector<Vector3>& x = problem.referencePoints();
-    const std::vector<double>& weights = problem.edgeWeights();
-    const std::vector<int>& unknownIndex = problem.unknownIndex();
-    const BlockPattern& pattern = problem.blockPattern();
-    const std::vector<int>& edgeBlock = problem.edgeBlock();
-    const std::vector<int>& edgeTransposeBlock = problem.edgeTransposeBlock();
-    const std::size_t blockArea = static_cast<std::size_t>(bs) * bs;
-
-    if (hessian) {
-        // Zeroed by block rows; the passes below write disjoint entries of each block.
-#pragma omp parallel for schedule(static) if (worthThreading(graph.neighbours.size()))
-        for (int a = 0; a < unknownNodeCount; ++a)
-            std::fill(hessian + blockArea * pattern.rowOffsets[a], hessian + blockArea * pattern.rowOffsets[a + 1], 0.0);
-    }
-
-    auto displacementOf = [&](int node) {
-        const int b = unknownIndex[node];
-        if (b < 0) return prescribed[node];
-        const double* block = unknowns.data() + static_cast<std::size_t>(b) * bs;
-        return Vector3{block[0], block[1], dim == 3 ? block[2] : 0.0};
-    };
-    auto offsetOf = [&](int from, int to) {
-        Vector3 d = x[to] - x[from];
-        if (dim == 2) d.z = 0.0;
-        return d;
-    };
-    // r of edge e = (i → j) with centre i's rotation.
-    auto residualOf = [&](int i, int j, const Matrix3& rotation, const Vector3& ui) {
-        const Vector3 d = offsetOf(i, j);
-        const Vector3 rotated = rotation * d;
-        return displacementOf(j) - ui + (d - rotated);
-    };
-
-    std::vector<double> edgeEnergy(graph.neighbours.size());
-    // The gradient's u_i rows need every neighbour's rotation: computed first.
-    std::vector<Matrix3> rotations(gradient ? static_cast<std::size_t>(unknownNodeCount) : 0);
-    if (gradient) {
-#pragma omp parallel for schedule(static) if (worthThreading(graph.neighbours.size()))
-        for (int a = 0; a < unknownNodeCount; ++a)
-            rotations[a] = rotationDerivatives(dim, model, unknowns.data() + static_cast<std::size_t>(a) * bs + dim).rotation;
-    }
-
-#pragma omp parallel for schedule(static) if (worthThreading(graph.neighbours.size()))
-    for (int a = 0; a < unknownNodeCount; ++a) {
-        const int i = nodes[a];
-        const double* block = unknowns.data() + static_cast<std::size_t>(a) * bs;
-        const RotationDerivatives rotation = rotationDerivatives(dim, model, block + dim);
-        const Vector3 ui{block[0], block[1], dim == 3 ? block[2] : 0.0};
-        double* gi = gradient ? gradient + static_cast<std::size_t>(a) * bs : nullptr;
-        double* hii = hessian ? hessian + blockArea * pattern.diagonal[a] : nullptr;
-        const int split = firstEdgeAfter(graph, i);
-
-        // +w r of the edge j → i of an unknown neighbour j (centre j's u_j-term of ∇).
-        auto addIncoming = [&](int e) {
-            const int j = graph.neighbours[e];
-            const int b = unknownIndex[j];
-            if (b < 0) return;
-            const double* blockJ = unknowns.data() + static_cast<std::size_t>(b) * bs;
-            const Vector3 uj{blockJ[0], blockJ[1], dim == 3 ? blockJ[2] : 0.0};
-            const double w = weights[e];   // w_ji = w_ij (RbmProblem::edgeWeights)
-            const Vector3 r = residualOf(j, i, rotations[b], uj);
-            for (int q = 0; q < dim; ++q) gi[q] += w * r[q];
-        };
-        if (gi) {
-            for (int k = 0; k < bs; ++k) gi[k] = 0.0;
-            for (int e = graph.offsets[i]; e < split; ++e) addIncoming(e);
-        }
-
-        for (int e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e) {
-            const int j = graph.neighbours[e];
-            const double w = weights[e];
-            const Vector3 d = offsetOf(i, j);
-            const Vector3 r = residualOf(i, j, rotation.rotation, ui);
-            edgeEnergy[e] = 0.5 * w * normSquared(r);
-            if (!gradient && !hessian) continue;
-
-            std::array<Vector3, 3> derivative;  // a_k
-            for (int k = 0; k < rotationCount; ++k) derivative[k] = rotation.first[k] * d;
-            const int b = unknownIndex[j];
-
-            if (gradient) {
-                for (int q = 0; q < dim; ++q) gi[q] -= w * r[q];
-                for (int k = 0; k < rotationCount; ++k) gi[dim + k] -= w * dot(derivative[k], r);
-            }
-            if (hessian) {
-                // (u_i, φ_i), (φ_i, u_i), (φ_i, φ_i); the (u_i, u_i) diagonal is gathered below.
-                addRotationBlocks(hii, bs, dim, rotationCount, derivative, rotation, r, d, w, includeCurvature);
-                if (b >= 0) {
-                    // Entries only this edge writes: (φ_i, u_j) of block (i, j), (u_j, φ_i) of
-                    // block (j, i). The (u, u) diagonal of block (i, j) sums −w of both
-                    // directions (w_ij = w_ji); with two terms the order does not matter.
-                    double* hij = hessian + blockArea * edgeBlock[e];
-                    double* hji = hessian + blockArea * edgeTransposeBlock[e];
-                    for (int q = 0; q < dim; ++q) hij[q * bs + q] = (0.0 - w) - w;
-                    for (int k = 0; k < rotationCount; ++k) {
-                        for (int q = 0; q < dim; ++q) {
-                            hij[(dim + k) * bs + q] = 0.0 - w * derivative[k][q];
-                            hji[q * bs + dim + k] = 0.0 - w * derivative[k][q];
-                        }
-                    }
-                }
-            }
-        }
-        if (gi)
-            for (int e = split; e < graph.offsets[i + 1]; ++e) addIncoming(e);
-        if (hessian) {
-            // (u_i, u_i) diagonal: w of the edges j → i of unknown j < i, then of i's own
-            // edges, then of unknown j > i.
-            double diagonal = 0.0;
-            for (int e = graph.offsets[i]; e < split; ++e)
-                if (unknownIndex[graph.neighbours[e]] >= 0) diagonal += weights[e];   // w_ji = w_ij
-            for (int e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e) diagonal += weights[e];
-            for (int e = split; e < graph.offsets[i + 1]; ++e)
-                if (unknownIndex[graph.neighbours[e]] >= 0) diagonal += weights[e];
-            for (int q = 0; q < dim; ++q) hii[q * bs + q] = diagonal;
-        }
-    }
-
-    double energy = 0.0;
-    for (int i : nodes)
-        for (int e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e) energy += edgeEnergy[e];
-    return energy;
+    return ThreadedPass(problem, model, prescribed, unknowns, gradient, hessian, includeCurvature).run();
 }
 
 double evaluate(const RbmProblem& problem, RotationModel model, const std::vector<Vector3>& prescribed,

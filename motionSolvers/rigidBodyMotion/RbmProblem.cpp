@@ -104,7 +104,20 @@ void RbmProblem::checkNodeArray(std::span<const Vector3> values, std::string_vie
                                     " entries, expected one per node (" + std::to_string(nodeCount()) + ")");
 }
 
+// Builds the derived data of the problem, checking its inputs.
 void RbmProblem::build()
+{
+    checkSizes();
+    computeSlidingNormals();
+    numberUnknowns();
+    computeEdgeWeights();
+    checkUnknownsHeld();
+    buildBlockPattern();
+    checkBlockPattern();
+}
+
+// The dimension, the graph and the constraints fit the reference points.
+void RbmProblem::checkSizes() const
 {
     if (dimension_ != 2 && dimension_ != 3)
         throw std::invalid_argument("RBM problem: dimension must be 2 or 3, got " + std::to_string(dimension_));
@@ -117,8 +130,12 @@ void RbmProblem::build()
     if (static_cast<int>(constraints_.size()) != n)
         throw std::invalid_argument("RBM problem: " + std::to_string(constraints_.size()) +
                                     " node constraints given, expected one per node (" + std::to_string(n) + ")");
+}
 
-    // Sliding normals.
+// Unit normals of the sliding nodes' planes (and second planes along a line), checked.
+void RbmProblem::computeSlidingNormals()
+{
+    const int n = nodeCount();
     slidingNodeCount_ = 0;
     const bool anySliding = std::any_of(constraints_.begin(), constraints_.end(),
                                         [](const NodeConstraint& c) { return c.kind == NodeKind::sliding; });
@@ -148,8 +165,12 @@ void RbmProblem::build()
                                         " has a second plane normal that is invalid or parallel to the first");
         secondUnitNormals_[node] = m / orthogonal;
     }
+}
 
-    // Unknown numbering.
+// Unknown numbering: the nodes not prescribed, in node order.
+void RbmProblem::numberUnknowns()
+{
+    const int n = nodeCount();
     unknownIndex_.assign(n, -1);
     unknownNodes_.clear();
     for (int node = 0; node < n; ++node) {
@@ -157,42 +178,47 @@ void RbmProblem::build()
         unknownIndex_[node] = static_cast<int>(unknownNodes_.size());
         unknownNodes_.push_back(node);
     }
+}
 
-    computeEdgeWeights();
-
-    // Every unknown node needs neighbours, and every connected group of unknown nodes
-    // needs a prescribed neighbour; otherwise the group floats and the system is singular.
-    {
-        std::vector<int> component(n, -1);
-        std::vector<int> stack;
-        for (int start : unknownNodes_) {
-            if (g.offsets[start + 1] == g.offsets[start])
-                throw std::invalid_argument("RBM problem: unknown node " + std::to_string(start) +
-                                            " has no neighbours");
-            if (component[start] >= 0) continue;
-            bool held = false;
-            component[start] = start;
-            stack.assign(1, start);
-            while (!stack.empty()) {
-                const int i = stack.back();
-                stack.pop_back();
-                for (int e = g.offsets[i]; e < g.offsets[i + 1]; ++e) {
-                    const int j = g.neighbours[e];
-                    if (constraints_[j].kind == NodeKind::prescribed) {
-                        held = true;
-                    } else if (component[j] < 0) {
-                        component[j] = start;
-                        stack.push_back(j);
-                    }
+// Every unknown node needs neighbours, and every connected group of unknown nodes
+// needs a prescribed neighbour; otherwise the group floats and the system is singular.
+void RbmProblem::checkUnknownsHeld() const
+{
+    const CellNeighbourGraph& g = *graph_;
+    const int n = nodeCount();
+    std::vector<int> component(n, -1);
+    std::vector<int> stack;
+    for (int start : unknownNodes_) {
+        if (g.offsets[start + 1] == g.offsets[start])
+            throw std::invalid_argument("RBM problem: unknown node " + std::to_string(start) +
+                                        " has no neighbours");
+        if (component[start] >= 0) continue;
+        bool held = false;
+        component[start] = start;
+        stack.assign(1, start);
+        while (!stack.empty()) {
+            const int i = stack.back();
+            stack.pop_back();
+            for (int e = g.offsets[i]; e < g.offsets[i + 1]; ++e) {
+                const int j = g.neighbours[e];
+                if (constraints_[j].kind == NodeKind::prescribed) {
+                    held = true;
+                } else if (component[j] < 0) {
+                    component[j] = start;
+                    stack.push_back(j);
                 }
             }
-            if (!held)
-                throw std::invalid_argument("RBM problem: the unknown nodes connected to node " + std::to_string(start) +
-                                            " have no prescribed neighbour, so their motion is undetermined");
         }
+        if (!held)
+            throw std::invalid_argument("RBM problem: the unknown nodes connected to node " + std::to_string(start) +
+                                        " have no prescribed neighbour, so their motion is undetermined");
     }
+}
 
-    // Block pattern over unknown nodes: graph neighbours that are unknown, plus the diagonal.
+// Block pattern over unknown nodes: graph neighbours that are unknown, plus the diagonal.
+void RbmProblem::buildBlockPattern()
+{
+    const CellNeighbourGraph& g = *graph_;
     const int m = unknownNodeCount();
     blockPattern_ = BlockPattern{};
     blockPattern_.rowOffsets.assign(m + 1, 0);
@@ -229,6 +255,12 @@ void RbmProblem::build()
             blockPattern_.columns[position++] = a;
         }
     }
+}
+
+// The pattern's rows are sorted and the graph is symmetric between unknowns.
+void RbmProblem::checkBlockPattern() const
+{
+    const int m = unknownNodeCount();
     for (int a = 0; a < m; ++a) {
         const auto begin = blockPattern_.columns.begin() + blockPattern_.rowOffsets[a];
         const auto end = blockPattern_.columns.begin() + blockPattern_.rowOffsets[a + 1];

@@ -197,6 +197,12 @@ public:
 
 private:
     void build();
+    void checkSizes() const;
+    void computeSlidingNormals();
+    void numberUnknowns();
+    void checkUnknownsHeld() const;
+    void buildBlockPattern();
+    void checkBlockPattern() const;
     void computeEdgeWeights();
     // The position of block (b, a) in row b of the pattern, −1 if there is none.
     int reversePosition(int a, int b) const;

@@ -32,6 +32,137 @@ int automaticSubStepCount(const RbmProblem& problem, std::span<const Vector3> pr
     return static_cast<int>(count);
 }
 
+namespace {
+
+// v in the plane of a 2D problem (z dropped), else v.
+Vector3 inPlane(int dim, Vector3 v)
+{
+    if (dim == 2) v.z = 0.0;
+    return v;
+}
+
+// The thesis' rule on a node's motion length: raises count to ⌊length / d_min⌋ + 1.
+void applyThesisRule(const RbmProblem& problem, int node, double length, double& count)
+{
+    const double shortest = problem.shortestNeighbourDistance(node);
+    if (length == 0.0 || !std::isfinite(shortest)) return;
+    count = std::max(count, std::floor(length / shortest) + 1.0);
+}
+
+// A group's best rigid motion: centroid before and after, rotation and its angle.
+struct GroupMotion {
+    Vector3 centreFrom;
+    Vector3 centreTo;
+    Matrix3 rotation = Matrix3::identity();
+    double angle = 0.0;
+};
+
+// Best rotation of the group (2D: atan2 of the summed cross and dot products; 3D: Kabsch).
+void fitGroupRotation(const RbmProblem& problem, std::span<const Vector3> prescribedDisplacement,
+                      std::span<const int> members, GroupMotion& motion)
+{
+    const int dim = problem.dimension();
+    const std::vector<Vector3>& reference = problem.referencePoints();
+    if (dim == 2) {
+        double crossSum = 0.0;
+        double dotSum = 0.0;
+        for (const int node : members) {
+            const Vector3 a = inPlane(dim, reference[node]) - motion.centreFrom;
+            const Vector3 b = inPlane(dim, reference[node] + prescribedDisplacement[node]) - motion.centreTo;
+            crossSum += a.x * b.y - a.y * b.x;
+            dotSum += a.x * b.x + a.y * b.y;
+        }
+        motion.angle = bestPlanarAngle(crossSum, dotSum);
+        motion.rotation = planarRotation(motion.angle);
+    } else {
+        Matrix3 covariance;
+        for (const int node : members) {
+            const Vector3 a = reference[node] - motion.centreFrom;
+            const Vector3 b = reference[node] + prescribedDisplacement[node] - motion.centreTo;
+            for (int r = 0; r < 3; ++r)
+                for (int c = 0; c < 3; ++c) covariance.m[r][c] += b[r] * a[c];
+        }
+        motion.rotation = bestRotation(covariance);
+        motion.angle = norm(rotationVectorFromMatrix(motion.rotation));
+    }
+}
+
+// The group's centroids and best rotation (the fit of §2.3 over the group).
+GroupMotion bestGroupMotion(const RbmProblem& problem, std::span<const Vector3> prescribedDisplacement,
+                            std::span<const int> members)
+{
+    const int dim = problem.dimension();
+    const std::vector<Vector3>& reference = problem.referencePoints();
+    GroupMotion motion;
+    for (const int node : members) {
+        motion.centreFrom += inPlane(dim, reference[node]);
+        motion.centreTo += inPlane(dim, reference[node] + prescribedDisplacement[node]);
+    }
+    motion.centreFrom /= static_cast<double>(members.size());
+    motion.centreTo /= static_cast<double>(members.size());
+    fitGroupRotation(problem, prescribedDisplacement, members, motion);
+    return motion;
+}
+
+// |t - t_o| / gap of the group (see below; 0 where there is no finite positive gap).
+double groupShear(const RbmProblem& problem, std::span<const Vector3> prescribedDisplacement,
+                  std::span<const int> groupOffsets, std::span<const int> groupNodes, int group,
+                  const GroupMotion& motion)
+{
+    const int dim = problem.dimension();
+    const std::vector<Vector3>& reference = problem.referencePoints();
+    const int groupCount = static_cast<int>(groupOffsets.size()) - 1;
+    const int begin = groupOffsets[group];
+    const int end = groupOffsets[group + 1];
+    // The translation turns the cells between this group and the others (fixed walls)
+    // by about |t - t_o| / gap, gap the clearance between the group's bounding circle and
+    // the nearest node of another group o, t_o that group's centroid translation: a
+    // translation of the whole mesh costs nothing, one of a body against a fixed wall as
+    // much as the shear it causes.
+    double radius = 0.0;
+    for (int k = begin; k < end; ++k)
+        radius = std::max(radius, norm(inPlane(dim, reference[groupNodes[k]]) - motion.centreFrom));
+    double gap = std::numeric_limits<double>::infinity();
+    int nearest = -1;
+    for (int other = 0; other < groupCount; ++other) {
+        if (other == group) continue;
+        for (int k = groupOffsets[other]; k < groupOffsets[other + 1]; ++k) {
+            const double clearance = norm(inPlane(dim, reference[groupNodes[k]]) - motion.centreFrom) - radius;
+            if (clearance < gap) {
+                gap = clearance;
+                nearest = other;
+            }
+        }
+    }
+    Vector3 otherTranslation;
+    if (nearest >= 0) {
+        for (int k = groupOffsets[nearest]; k < groupOffsets[nearest + 1]; ++k)
+            otherTranslation += inPlane(dim, prescribedDisplacement[groupNodes[k]]);
+        otherTranslation /= static_cast<double>(groupOffsets[nearest + 1] - groupOffsets[nearest]);
+    }
+    if (!(gap > 0.0)) gap = radius;  // nested bounding circles: the group's own size
+    return gap > 0.0 && std::isfinite(gap) ? norm(motion.centreTo - motion.centreFrom - otherTranslation) / gap : 0.0;
+}
+
+// The thesis' rule on each member's non-rigid rest, parts below 1e-9 of the group's size and motion being rounding.
+void applyRuleToNonRigidRest(const RbmProblem& problem, std::span<const Vector3> prescribedDisplacement,
+                             std::span<const int> members, const GroupMotion& motion, double& count)
+{
+    const int dim = problem.dimension();
+    const std::vector<Vector3>& reference = problem.referencePoints();
+    double size = 0.0;
+    for (const int node : members)
+        size = std::max(size, norm(inPlane(dim, reference[node]) - motion.centreFrom) +
+                                  norm(inPlane(dim, prescribedDisplacement[node])));
+    for (const int node : members) {
+        const Vector3 rigid = motion.centreTo + motion.rotation * (inPlane(dim, reference[node]) - motion.centreFrom);
+        const double rest = norm(inPlane(dim, reference[node] + prescribedDisplacement[node]) - rigid);
+        if (rest > 1e-9 * size) applyThesisRule(problem, node, rest, count);
+    }
+}
+
+} // namespace
+
 int rotationAwareSubStepCount(const RbmProblem& problem, std::span<const Vector3> prescribedDisplacement,
                               std::span<const int> groupOffsets, std::span<const int> groupNodes,
                               double maxAngleRadians)
@@ -39,105 +170,24 @@ int rotationAwareSubStepCount(const RbmProblem& problem, std::span<const Vector3
     problem.checkNodeArray(prescribedDisplacement, "prescribed displacement");
     if (!(maxAngleRadians > 0.0)) throw std::invalid_argument("sub-steps: the angle per sub-step must be positive");
     const int dim = problem.dimension();
-    auto flat = [dim](Vector3 v) {
-        if (dim == 2) v.z = 0.0;
-        return v;
-    };
-    const std::vector<Vector3>& reference = problem.referencePoints();
     double count = 1.0;
-    auto thesisRule = [&](int node, double length) {
-        const double shortest = problem.shortestNeighbourDistance(node);
-        if (length == 0.0 || !std::isfinite(shortest)) return;
-        count = std::max(count, std::floor(length / shortest) + 1.0);
-    };
     // Sliding nodes: the normal component of their plane's motion (as in the thesis' rule).
     for (int node = 0; node < problem.nodeCount(); ++node) {
         if (problem.kind(node) != NodeKind::sliding) continue;
         const Vector3& normal = problem.slidingNormal(node);
-        thesisRule(node, std::abs(dot(flat(prescribedDisplacement[node]), normal)));
+        applyThesisRule(problem, node, std::abs(dot(inPlane(dim, prescribedDisplacement[node]), normal)), count);
     }
     const int groupCount = static_cast<int>(groupOffsets.size()) - 1;
     for (int group = 0; group < groupCount; ++group) {
         const int begin = groupOffsets[group];
         const int end = groupOffsets[group + 1];
         if (end == begin) continue;
-        Vector3 centreFrom;
-        Vector3 centreTo;
-        for (int k = begin; k < end; ++k) {
-            const int node = groupNodes[k];
-            centreFrom += flat(reference[node]);
-            centreTo += flat(reference[node] + prescribedDisplacement[node]);
-        }
-        centreFrom /= static_cast<double>(end - begin);
-        centreTo /= static_cast<double>(end - begin);
-        // Best rotation of the group (2D: atan2 of the summed cross and dot products; 3D: Kabsch).
-        Matrix3 rotation = Matrix3::identity();
-        double angle = 0.0;
-        if (dim == 2) {
-            double crossSum = 0.0;
-            double dotSum = 0.0;
-            for (int k = begin; k < end; ++k) {
-                const int node = groupNodes[k];
-                const Vector3 a = flat(reference[node]) - centreFrom;
-                const Vector3 b = flat(reference[node] + prescribedDisplacement[node]) - centreTo;
-                crossSum += a.x * b.y - a.y * b.x;
-                dotSum += a.x * b.x + a.y * b.y;
-            }
-            angle = bestPlanarAngle(crossSum, dotSum);
-            rotation = planarRotation(angle);
-        } else {
-            Matrix3 covariance;
-            for (int k = begin; k < end; ++k) {
-                const int node = groupNodes[k];
-                const Vector3 a = reference[node] - centreFrom;
-                const Vector3 b = reference[node] + prescribedDisplacement[node] - centreTo;
-                for (int r = 0; r < 3; ++r)
-                    for (int c = 0; c < 3; ++c) covariance.m[r][c] += b[r] * a[c];
-            }
-            rotation = bestRotation(covariance);
-            angle = norm(rotationVectorFromMatrix(rotation));
-        }
-        // The translation turns the cells between this group and the others (fixed walls)
-        // by about |t - t_o| / gap, gap the clearance between the group's bounding circle and
-        // the nearest node of another group o, t_o that group's centroid translation: a
-        // translation of the whole mesh costs nothing, one of a body against a fixed wall as
-        // much as the shear it causes.
-        double radius = 0.0;
-        for (int k = begin; k < end; ++k) radius = std::max(radius, norm(flat(reference[groupNodes[k]]) - centreFrom));
-        double gap = std::numeric_limits<double>::infinity();
-        int nearest = -1;
-        for (int other = 0; other < groupCount; ++other) {
-            if (other == group) continue;
-            for (int k = groupOffsets[other]; k < groupOffsets[other + 1]; ++k) {
-                const double clearance = norm(flat(reference[groupNodes[k]]) - centreFrom) - radius;
-                if (clearance < gap) {
-                    gap = clearance;
-                    nearest = other;
-                }
-            }
-        }
-        Vector3 otherTranslation;
-        if (nearest >= 0) {
-            for (int k = groupOffsets[nearest]; k < groupOffsets[nearest + 1]; ++k)
-                otherTranslation += flat(prescribedDisplacement[groupNodes[k]]);
-            otherTranslation /= static_cast<double>(groupOffsets[nearest + 1] - groupOffsets[nearest]);
-        }
-        if (!(gap > 0.0)) gap = radius;  // nested bounding circles: the group's own size
-        const double shear =
-            gap > 0.0 && std::isfinite(gap) ? norm(centreTo - centreFrom - otherTranslation) / gap : 0.0;
+        const std::span<const int> members = groupNodes.subspan(begin, end - begin);
+        const GroupMotion motion = bestGroupMotion(problem, prescribedDisplacement, members);
+        const double shear = groupShear(problem, prescribedDisplacement, groupOffsets, groupNodes, group, motion);
         // (1e-9: a rotation of exactly k·maxAngle, fitted to rounding, takes k sub-steps.)
-        count = std::max(count, std::ceil((std::abs(angle) + shear) / maxAngleRadians - 1e-9));
-        double size = 0.0;
-        for (int k = begin; k < end; ++k) {
-            const int node = groupNodes[k];
-            size = std::max(size, norm(flat(reference[node]) - centreFrom) + norm(flat(prescribedDisplacement[node])));
-        }
-        for (int k = begin; k < end; ++k) {
-            const int node = groupNodes[k];
-            const Vector3 rigid = centreTo + rotation * (flat(reference[node]) - centreFrom);
-            const double rest = norm(flat(reference[node] + prescribedDisplacement[node]) - rigid);
-            if (rest > 1e-9 * size) thesisRule(node, rest);
-        }
+        count = std::max(count, std::ceil((std::abs(motion.angle) + shear) / maxAngleRadians - 1e-9));
+        applyRuleToNonRigidRest(problem, prescribedDisplacement, members, motion, count);
     }
     if (!(count < static_cast<double>(std::numeric_limits<int>::max())))
         throw std::invalid_argument("sub-steps: the prescribed displacement is too large for its mesh");
