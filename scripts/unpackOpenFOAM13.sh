@@ -4,8 +4,8 @@
 # build/lib/librbmMotionSolverOF13.so. The tarball is not in the repository (64 MB); it is looked
 # for, first found wins, in
 #   1. $RBM_OPENFOAM13_TARBALL (the .tgz itself),
-#   2.–4. where rbm's build machines keep it: a shared/openfoam-13 folder beside the repository,
-#      beside the main checkout of a git worktree, or at one fixed path (so that a fresh clone
+#   2.–3. where rbm's build machines keep it: a shared/openfoam-13 folder beside the main
+#      checkout (found from a git worktree too), or at one fixed path (so that a fresh clone
 #      anywhere on such a machine finds it).
 # Not found: a message saying so and exit status 0: rbm and the v1912 plugin build without it
 # and the OpenFOAM 13 plugin's tests report skipped. Idempotent: when
@@ -23,7 +23,6 @@ fi
 tarballName=openfoam-13-debian12-linux64GccDPInt32Opt.tgz
 candidates=()
 [ -n "${RBM_OPENFOAM13_TARBALL:-}" ] && candidates+=("$RBM_OPENFOAM13_TARBALL")
-candidates+=("$PWD/../shared/openfoam-13/$tarballName")
 if commonDir="$(git rev-parse --path-format=absolute --git-common-dir 2>/dev/null)"; then
   candidates+=("$(dirname "$(dirname "$commonDir")")/shared/openfoam-13/$tarballName")
 fi
