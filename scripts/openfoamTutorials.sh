@@ -10,7 +10,7 @@
 # step, and compares each check with tests/openfoamTutorials/expectations.
 #
 #   scripts/openfoamTutorials.sh [--plugin PATH] [--work DIR] [--cases a,b,c] [--table FILE]
-#                                [--emptyCoeffs] [--keep]
+#                                [--emptyCoeffs] [--coeffs TEXT] [--keep]
 #
 #   --plugin PATH   librbmMotionSolver.so (default build/lib/librbmMotionSolver.so); `none`
 #                   or a missing file: every case prints "skipped: ..." and the exit status is 0
@@ -24,6 +24,9 @@
 #   --emptyCoeffs   also appends `rigidBodyMotionSolverCoeffs { }` to the rbm case's
 #                   dynamicMeshDict: only for plugins older than the one that accepts the
 #                   other solvers' entries (the table says so); not the user's switch
+#   --coeffs TEXT   appends `rigidBodyMotionSolverCoeffs { TEXT }` instead, to measure rbm's
+#                   options on the cases (e.g. --coeffs "scaling similar;"); the table's
+#                   header says so, and the expectations still apply to the defaults only
 #
 # Exit status: 0 when every check the expectations file marks `pass` passed (a `knownMiss`
 # that passes is reported loudly: "NOW PASSES, update expectations"); 1 when one failed;
@@ -36,6 +39,7 @@ work=""
 cases=movingCone,waveMakerFlap,waveMakerPiston,oscillatingBox,sphereDrop
 table=""
 emptyCoeffs=0
+coeffs=""
 keep=0
 while [[ $# -gt 0 ]]; do
   case $1 in
@@ -44,6 +48,7 @@ while [[ $# -gt 0 ]]; do
     --cases) cases=$2; shift 2 ;;
     --table) table=$2; shift 2 ;;
     --emptyCoeffs) emptyCoeffs=1; shift ;;
+    --coeffs) coeffs=$2; shift 2 ;;
     --keep) keep=1; shift ;;
     -h|--help) sed -n '2,/^set -uo/p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
     *) echo "openfoamTutorials.sh: unknown argument '$1' (--help)" >&2; exit 2 ;;
@@ -138,7 +143,8 @@ switchToRbm() { # dir
     echo "motionSolverLibs (\"$plugin\");" >> "$dict"
   fi
   sed -i -E "s/^([[:space:]]*(motionSolver|solver)[[:space:]]+)[A-Za-z0-9_]+;/\1rigidBodyMotionSolver;/" "$dict"
-  if [[ $emptyCoeffs == 1 ]]; then echo 'rigidBodyMotionSolverCoeffs { }' >> "$dict"; fi
+  if [[ -n $coeffs ]]; then echo "rigidBodyMotionSolverCoeffs { $coeffs }" >> "$dict"
+  elif [[ $emptyCoeffs == 1 ]]; then echo 'rigidBodyMotionSolverCoeffs { }' >> "$dict"; fi
 }
 
 copyCase() { # from to
@@ -208,4 +214,4 @@ cores=$(lscpu 2>/dev/null | sed -n "s/^CPU(s):[[:space:]]*//p" | head -n 1)
 pluginStamp="$(basename "$plugin") $(date -u -r "$plugin" '+%Y-%m-%d %H:%M:%S UTC'), sha256 $(sha256sum "$plugin" | cut -c1-12)"
 python3 "$root/tests/openfoamTutorials/analyse.py" report "$work" "$cases" "$expectations" "${table:--}" \
   "$commit" "$(date -u '+%Y-%m-%d %H:%M UTC')" "$cpu, $cores cores, load $(cut -d' ' -f1-3 /proc/loadavg)" \
-  "$commandLine" "$total" "$pluginStamp" "$emptyCoeffs"
+  "$commandLine" "$total" "$pluginStamp" "$emptyCoeffs" "$coeffs"

@@ -1,11 +1,13 @@
 #include "InvertedStepAdvice.hpp"
 
+#include "RbmSolverSelection.hpp"
+
 #include <iomanip>
 #include <sstream>
 
 namespace rbm::motion {
 
-std::vector<std::string> robustOptionChanges(const RigidBodyMotionOptions& o)
+std::vector<std::string> robustOptionChanges(const RigidBodyMotionOptions& o, int /*dimension*/)
 {
     std::vector<std::string> changes;
     if (o.formulation == RbmFormulation::linearized)
@@ -21,22 +23,35 @@ std::vector<std::string> robustOptionChanges(const RigidBodyMotionOptions& o)
     return changes;
 }
 
-std::string invertedStepAdvice(const RigidBodyMotionOptions& options, double largestRotationDegrees,
+std::string invertedStepAdvice(const RigidBodyMotionOptions& options, int dimension, double largestRotationDegrees,
                                double cellSizeRatio)
 {
     std::ostringstream text;
-    if (const std::vector<std::string> changes = robustOptionChanges(options); !changes.empty()) {
+    if (const std::vector<std::string> changes = robustOptionChanges(options, dimension); !changes.empty()) {
         text << "In rigidBodyMotionSolverCoeffs, what can help this motion: ";
         for (std::size_t k = 0; k < changes.size(); ++k) text << (k ? "; " : "") << changes[k];
         text << ".";
         return text.str();
     }
     text << std::setprecision(2);
-    if (cellSizeRatio < squeezeAdviceRatio) {
+    const bool reducedNewton = options.coupling == RbmCoupling::coupled &&
+                               options.formulation == RbmFormulation::nonlinear &&
+                               options.algorithm == RbmAlgorithm::reducedNewton;
+    if (cellSizeRatio < squeezeAdviceRatio && dimension == 2 && reducedNewton &&
+        effectiveScaling(options, dimension).stiffness != 0.0) {
+        text << "In rigidBodyMotionSolverCoeffs, what can help this motion: scaling similar (the motion squeezes cells to "
+             << cellSizeRatio << " of their size and less, a body closing a gap; with it each neighbourhood may shrink "
+                "as freely as it turns, and with weighting uniform as well OpenFOAM's movingCone runs to the end).";
+    } else if (cellSizeRatio < squeezeAdviceRatio) {
         text << "None of rbm's options will help: the motion squeezes cells to " << cellSizeRatio
-             << " of their size and less (a body closing a gap; 1 % of the cells), and rbm moves every node's neighbourhood as close to a "
-                "rigid body as it can, which does not shrink: the cells nearest the gap fold. What can: more cells "
-                "in the gap, a smaller motion between remeshings, or a Laplacian motion solver for this case.";
+             << " of their size and less (a body closing a gap; 1 % of the cells), and rbm moves every node's neighbourhood as close to ";
+        if (dimension == 2)
+            text << "a turned and uniformly scaled copy of itself as it can, which does not shrink in one direction only: "
+                    "the cells beside the gap shear until they fold.";
+        else
+            text << "a rigid body as it can, which does not shrink: the cells nearest the gap fold.";
+        text << " What can: more cells in the gap, a smaller motion between remeshings, or a Laplacian motion solver "
+                "with a directional diffusivity for this case.";
     } else if (largestRotationDegrees > 1.0) {
         text << "None of rbm's options will help: the boundary turns by " << largestRotationDegrees
              << " degrees, more than the cells between it and the fixed boundary can take with the defaults in effect "

@@ -15,13 +15,14 @@ namespace rbm::motion {
 // cells: a body closing a gap (OpenFOAM's movingCone squeezes cells to 0.02).
 inline constexpr double squeezeAdviceRatio = 0.35;
 
-// `largestRotationDegrees`: the largest rigid rotation of a prescribed patch in the step;
-// `cellSizeRatio`: smallestCellSizeRatio (src/CellSizeRatio.hpp) of the step's mesh.
-std::string invertedStepAdvice(const RigidBodyMotionOptions& options, double largestRotationDegrees,
+// `dimension`: the problem's (2: planar); `largestRotationDegrees`: the largest rigid rotation
+// of a prescribed patch in the step; `cellSizeRatio`: smallestCellSizeRatio
+// (src/CellSizeRatio.hpp) of the step's mesh.
+std::string invertedStepAdvice(const RigidBodyMotionOptions& options, int dimension, double largestRotationDegrees,
                                double cellSizeRatio);
 
-// The options in effect that a robust choice would change (empty: the robust choices are in
-// effect).
-std::vector<std::string> robustOptionChanges(const RigidBodyMotionOptions& options);
+// The options in effect that a robust choice would change for a problem of this dimension
+// (empty: the robust choices are in effect).
+std::vector<std::string> robustOptionChanges(const RigidBodyMotionOptions& options, int dimension);
 
 } // namespace rbm::motion

@@ -15,8 +15,8 @@ namespace {
 constexpr std::ptrdiff_t edgeLookaheadBytes = 2048;
 } // namespace
 
-PlanarReducedKernels::PlanarReducedKernels(const RbmProblem& problem)
-    : problem_(problem), unknownCount_(problem.unknownNodeCount())
+PlanarReducedKernels::PlanarReducedKernels(const RbmProblem& problem, NeighbourhoodScaling scaling)
+    : problem_(problem), unknownCount_(problem.unknownNodeCount()), scaling_(scaling)
 {
     if (problem.dimension() != 2) throw std::invalid_argument("PlanarReducedKernels: the problem is not planar");
     const CellNeighbourGraph& graph = problem.graph();
@@ -55,9 +55,17 @@ PlanarReducedKernels::PlanarReducedKernels(const RbmProblem& problem)
         laplacianWeight_[position] = static_cast<float>((edges_[position].compact != m ? 2.0 : 1.0) * edges_[position].weight);
     }
     inverseCurvature_.assign(m, 0.0);
+    inverseStretchCurvature_.assign(m, 0.0);
+    weightedSquaredLengths_.assign(m, 0.0);
+    for (int a = 0; a < m; ++a)
+        for (int position = offsets_[a]; position < offsets_[a + 1]; ++position) {
+            const Edge& edge = edges_[position];
+            weightedSquaredLengths_[a] += edge.weight * (edge.dx * edge.dx + edge.dy * edge.dy);
+        }
     nodeEnergy_.assign(m, 0.0);
     padded_.assign(2 * static_cast<std::size_t>(m) + 2, 0.0);
     turn_.assign(static_cast<std::size_t>(m) + 1, 0.0);
+    stretch_.assign(static_cast<std::size_t>(m) + 1, 0.0);
 }
 
 template <typename Body>
@@ -97,8 +105,12 @@ double PlanarReducedKernels::fitAndEnergy(std::span<const Vector3> displacement,
         // cosine and sine directly: one square root instead of atan2, cos and sin, in a step
         // that runs for every node each time the rotations are fitted.
         const double length = std::sqrt(crossSum * crossSum + dotSum * dotSum);
-        const double c = length > 0.0 ? dotSum / length : 1.0, s = length > 0.0 ? crossSum / length : 0.0;
-        double energy = 0.0;
+        // With scaling, the fit is the similarity scale × rotation (NeighbourhoodScaling.hpp),
+        // kept in rotations as the scaled matrix: ∇Ẽ and S read s R d from it unchanged.
+        const double scale = scaling_.scale(length, weightedSquaredLengths_[a]);
+        const double c = scale * (length > 0.0 ? dotSum / length : 1.0);
+        const double s = scale * (length > 0.0 ? crossSum / length : 0.0);
+        double energy = scaling_.penalty(scale, weightedSquaredLengths_[a]);
         for (int position = offsets_[a]; position < offsets_[a + 1]; ++position) {
             const Edge& edge = edges[position];
             const double rx = edge.dx + displacement[edge.node].x - ux - (c * edge.dx - s * edge.dy);
@@ -200,6 +212,7 @@ void PlanarReducedKernels::prepareHessian(std::span<const Vector3> displacement,
         // At a best fit H_δδ ≥ 0; where it is not positive the node's turn is left out (S = K
         // there), which keeps S positive definite and the step a descent direction.
         inverseCurvature_[a] = curvature > 0.0 ? 1.0 / curvature : 0.0;
+        inverseStretchCurvature_[a] = scaling_.inverseScaledCurvature(std::hypot(c, s), weightedSquaredLengths_[a]);
     });
 }
 
@@ -210,22 +223,35 @@ void PlanarReducedKernels::applyHessian(std::span<const double> v, std::span<dou
         throw std::invalid_argument("PlanarReducedKernels: applyHessian with vectors of the wrong size");
     double* padded = padded_.data();  // the zero slot m stays zero
     for (std::size_t k = 0; k < v.size(); ++k) padded[k] = v[k];
+    // Rigid neighbourhoods (the default) skip the scales' terms: S v is CG's inner loop.
+    if (scaling_.rigid()) applyHessianPasses<false>(y);
+    else applyHessianPasses<true>(y);
+}
+
+template <bool scaled>
+void PlanarReducedKernels::applyHessianPasses(std::span<double> y)
+{
+    const int m = unknownCount_;
+    const double* padded = padded_.data();
     const int* compact = compact_.data();
     const float* weighted = weightedRotated_.data();
     const float* weightedBack = weightedBackRotated_.data();
     const float* laplacianWeight = laplacianWeight_.data();
     const int* offsets = offsets_.data();
-    double* turn = turn_.data();  // the zero slot m stays zero
+    double* turn = turn_.data();        // the zero slot m stays zero
+    double* stretch = stretch_.data();  // the scales' change per node; the zero slot m stays zero
 #pragma omp parallel for schedule(static) if (worthThreading(compact_.size()))
     for (int a = 0; a < m; ++a) {
         const double vx = padded[2 * a], vy = padded[2 * a + 1];
-        double b = 0.0;
+        double b = 0.0, along = 0.0;
         for (int position = offsets[a]; position < offsets[a + 1]; ++position) {
             const double* vj = padded + 2 * static_cast<std::size_t>(compact[position]);
             const float* wq = weighted + 2 * static_cast<std::size_t>(position);
             b += wq[0] * (vj[1] - vy) - wq[1] * (vj[0] - vx);
+            if constexpr (scaled) along += wq[0] * (vj[0] - vx) + wq[1] * (vj[1] - vy);
         }
         turn[a] = inverseCurvature_[a] * b;
+        if constexpr (scaled) stretch[a] = inverseStretchCurvature_[a] * along;
     }
 #pragma omp parallel for schedule(static) if (worthThreading(compact_.size()))
     for (int a = 0; a < m; ++a) {
@@ -243,6 +269,10 @@ void PlanarReducedKernels::applyHessian(std::span<const double> v, std::span<dou
             // prescribed neighbour.
             sx += laplacianWeight[position] * (vx - vj[0]) - ya * wq[1] + yj * wqBack[1];
             sy += laplacianWeight[position] * (vy - vj[1]) + ya * wq[0] - yj * wqBack[0];
+            if constexpr (scaled) {  // the scales' terms z_a q − t z_j q_back (s w R d kept)
+                sx += stretch[a] * wq[0] - stretch[j] * wqBack[0];
+                sy += stretch[a] * wq[1] - stretch[j] * wqBack[1];
+            }
         }
         y[2 * static_cast<std::size_t>(a)] = sx;
         y[2 * static_cast<std::size_t>(a) + 1] = sy;

@@ -19,6 +19,7 @@
 //         (S v)_k = Σ_j w [(1 + t_j)(v_k − v_j) + y_k ẑ × q_kj − t_j y_j ẑ × q_jk].
 // Determinism: every loop writes its own node's entries and sums run in node order.
 
+#include "NeighbourhoodScaling.hpp"
 #include "RbmEnergy.hpp"
 #include "RbmProblem.hpp"
 
@@ -29,8 +30,9 @@ namespace rbm::motion {
 
 class PlanarReducedKernels {
 public:
-    // Keeps a reference to problem (dimension() must be 2).
-    explicit PlanarReducedKernels(const RbmProblem& problem);
+    // Keeps a reference to problem (dimension() must be 2). scaling: rigid neighbourhoods (the
+    // default) or similarities (NeighbourhoodScaling.hpp).
+    explicit PlanarReducedKernels(const RbmProblem& problem, NeighbourhoodScaling scaling = {});
 
     // Fits the best rotation of every unknown node into rotations (sized to the node count,
     // identity elsewhere) and returns Ẽ(u).
@@ -53,9 +55,14 @@ private:
     // edge records ahead of its node (ReadAhead.hpp): the loop of the fit, ∇Ẽ and the Hessian's data.
     template <typename Body>
     void forEachUnknownNode(Body&& body) const;
+    // S v's two passes over padded_ (v with its zero slot) into y.
+    template <bool scaled>
+    void applyHessianPasses(std::span<double> y);
 
     const RbmProblem& problem_;
     int unknownCount_;
+    NeighbourhoodScaling scaling_;
+    std::vector<double> weightedSquaredLengths_;  // per unknown node W = Σ_j w |d|²
     std::vector<int> offsets_;   // edges of unknown node a: [offsets_[a], offsets_[a + 1])
     std::vector<Edge> edges_;
     // S v's data per edge a→j, set by prepareHessian and read in order by applyHessian (no
@@ -69,12 +76,14 @@ private:
     std::vector<float> weightedRotated_, weightedBackRotated_, laplacianWeight_;
     std::vector<int> compact_;             // per edge: the neighbour's unknown index or the zero slot
     std::vector<double> inverseCurvature_; // per unknown node H_δδ⁻¹
+    std::vector<double> inverseStretchCurvature_;  // per unknown node 1 / (s² H_ss) (0: rigid)
     std::vector<double> nodeEnergy_;       // work: per-node energies, summed in order
     // work: (cos, sin) of every node's rotation, gathered from the 3×3 matrices once per pass,
     // so that the neighbours' rotations are read 16 bytes each instead of from 72-byte matrices
     mutable std::vector<double> cosineSine_;
     std::vector<double> padded_;           // work: v with a zero slot
     std::vector<double> turn_;             // work: y with a zero slot
+    std::vector<double> stretch_;          // work: the scales' change with a zero slot
 };
 
 } // namespace rbm::motion

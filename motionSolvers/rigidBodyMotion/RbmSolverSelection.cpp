@@ -1,6 +1,7 @@
 #include "RbmSolverSelection.hpp"
 
 #include "CellNeighbourGraph.hpp"
+#include "InputError.hpp"
 #include "CoupledLinearizedSolver.hpp"
 #include "CoupledNewtonSolver.hpp"
 #include "DecoupledSolver.hpp"
@@ -59,6 +60,20 @@ CoupledNewtonOptions newtonOptionsOf(const RbmProblem& problem, const RigidBodyM
 
 } // namespace
 
+NeighbourhoodScaling effectiveScaling(const RigidBodyMotionOptions& options, int dimension)
+{
+    const bool reducedNewton = options.coupling == RbmCoupling::coupled &&
+                               options.formulation == RbmFormulation::nonlinear &&
+                               options.algorithm == RbmAlgorithm::reducedNewton;
+    if (options.automaticScaling)
+        return reducedNewton && dimension == 2 ? NeighbourhoodScaling{automaticScaleStiffness} : NeighbourhoodScaling{};
+    if (!options.scaling.rigid() && dimension != 2)
+        throw InputError(options.file, options.scalingLine,
+                         "'scaling' other than rigid is implemented for planar (2D and pseudo-2D) cases only; "
+                         "this case is 3D");
+    return options.scaling;
+}
+
 std::unique_ptr<RbmSolver> makeRbmSolver(const RbmProblem& problem, const RigidBodyMotionOptions& options)
 {
     if (options.coupling == RbmCoupling::decoupled) return makeDecoupledSolver(problem, options);
@@ -85,6 +100,7 @@ std::unique_ptr<RbmSolver> makeRbmSolver(const RbmProblem& problem, const RigidB
         reduced.absoluteTolerance = newton.absoluteTolerance;
         reduced.displacementTolerance = options.displacementTolerance;
         if (options.maxIterations) reduced.maximumIterations = *options.maxIterations;
+        reduced.scaling = effectiveScaling(options, problem.dimension());
         return std::make_unique<ReducedNewtonSolver>(problem, reduced);
     }
     case RbmAlgorithm::newton: break;

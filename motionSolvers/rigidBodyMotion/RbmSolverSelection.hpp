@@ -27,6 +27,18 @@ namespace rbm::motion {
 // its cases (§3.1), few enough that a stall hands over to Newton early.
 inline constexpr int defaultLocalGlobalMaximumIterations = 200;
 
+// `scaling auto` in 2D: the scale costs 0.3 × its neighbourhood's squared size. Measured
+// (docs/motionSolver.md, "Neighbourhood scaling"): better than rigid on every OpenFOAM
+// tutorial that translates or squeezes, while the thesis' translated squares keep beating
+// OpenFOAM's best diffusivity (a free scale, `similar`, does best on the squeezes but loses
+// that case).
+inline constexpr double automaticScaleStiffness = 0.3;
+
+// The neighbourhoods' scaling in effect for a problem of this dimension: `scaling auto` is
+// automaticScaleStiffness for the default solver (reducedNewton) in 2D and rigid elsewhere;
+// an explicit value as written (rbm::InputError for a scaling other than rigid in 3D).
+NeighbourhoodScaling effectiveScaling(const RigidBodyMotionOptions& options, int dimension);
+
 // The solver for `problem` (which must outlive it).
 std::unique_ptr<RbmSolver> makeRbmSolver(const RbmProblem& problem, const RigidBodyMotionOptions& options);
 

@@ -32,7 +32,7 @@ double defaultAbsoluteTolerance(const RbmProblem& problem)
 } // namespace
 
 ReducedNewtonSolver::ReducedNewtonSolver(const RbmProblem& problem, ReducedNewtonOptions options)
-    : problem_(problem), options_(options), reducedEnergy_(problem),
+    : problem_(problem), options_(options), reducedEnergy_(problem, options.scaling),
       preconditioner_(problem, options.linearSolver, options.laplacianRelativeTolerance),
       relativeDisplacement_(problem, options.displacementTolerance > 0.0),
       warmStart_(problem, reducedEnergy_, preconditioner_, relativeDisplacement_,

@@ -72,6 +72,8 @@ struct ReducedNewtonOptions {
     // boundary changes where the new change is their combination (HarmonicChangeBasis.hpp;
     // false: a back-substitution at every step, for tests; -rbm_reduced_harmonic_basis false).
     bool harmonicBasis = true;
+    // Rigid neighbourhoods (the thesis' energy) or similarities (NeighbourhoodScaling.hpp).
+    NeighbourhoodScaling scaling;
 };
 
 class ReducedNewtonSolver : public RbmSolver {

@@ -56,6 +56,30 @@ double readPositiveScalar(const io::Entry& entry)
     return value;
 }
 
+// `scaling auto | rigid | similar | μ`: μ ≥ 0 the scale's stiffness (NeighbourhoodScaling.hpp).
+// Returns whether it is `auto`; otherwise sets scaling.
+bool readScaling(const io::Entry& entry, NeighbourhoodScaling& scaling)
+{
+    const std::string expected = "'scaling' must be auto, rigid, similar or a number ≥ 0 (the scale's stiffness)";
+    if (entry.isDictionary()) failAt(entry, expected);
+    io::TokenStream stream = entry.stream();
+    if (stream.atEnd()) failAt(entry, expected);
+    scaling = NeighbourhoodScaling{};
+    bool automatic = false;
+    if (stream.peek().kind == io::Token::Kind::Word) {
+        const std::string word = stream.readWord();
+        if (word == "similar") scaling.stiffness = 0.0;
+        else if (word == "auto") automatic = true;
+        else if (word != "rigid") failAt(entry, "invalid value '" + word + "': " + expected);
+    } else {
+        scaling.stiffness = stream.readScalar();
+        if (!(scaling.stiffness >= 0.0) || !std::isfinite(scaling.stiffness))
+            failAt(entry, expected + ", got " + entry.valueText());
+    }
+    if (!stream.atEnd()) failAt(entry, "unexpected '" + stream.peek().text + "' after the value of 'scaling'");
+    return automatic;
+}
+
 int readCount(const io::Entry& entry, int minimum)
 {
     if (entry.isDictionary()) failAt(entry, "'" + entry.keyword() + "' must be an integer");
@@ -181,7 +205,7 @@ const std::vector<std::string_view>& RigidBodyMotionOptions::keywords()
     static const std::vector<std::string_view> words{
         "coupling",  "formulation",   "algorithm",         "weighting",     "subSteps",
         "maxSubStepSplits", "maxSubSteps", "tolerance", "relativeTolerance", "displacementTolerance", "maxIterations",
-        "linearSolver", "petscOptions", "stiffening", "untangle", "floatingPatches"};
+        "linearSolver", "petscOptions", "stiffening", "untangle", "scaling", "floatingPatches"};
     return words;
 }
 
@@ -205,6 +229,11 @@ std::string RigidBodyMotionOptions::describe() const
         text << ')';
     }
     if (!untangle) text << ", untangle off";
+    if (!automaticScaling) {
+        if (scaling.rigid()) text << ", scaling rigid";
+        else if (scaling.stiffness == 0.0) text << ", scaling similar";
+        else text << ", scaling " << scaling.stiffness;
+    }
     return text.str();
 }
 
@@ -281,6 +310,9 @@ RigidBodyMotionOptions RigidBodyMotionOptions::read(const io::Dictionary& coeffi
             options.stiffening = readStiffening(entry);
         } else if (keyword == "untangle") {
             options.untangle = readChoice(entry, {"on", "off"}) == "on";
+        } else if (keyword == "scaling") {
+            options.automaticScaling = readScaling(entry, options.scaling);
+            options.scalingLine = entry.line();
         } else if (keyword == "floatingPatches") {
             io::TokenStream stream = entry.stream();
             if (stream.atEnd()) failAt(entry, "'floatingPatches' needs a list of patches, e.g. (outlet)");
@@ -289,6 +321,12 @@ RigidBodyMotionOptions RigidBodyMotionOptions::read(const io::Dictionary& coeffi
             options.floatingPatchesLine = entry.line();
         }
     }
+    if (!options.automaticScaling && !options.scaling.rigid() &&
+        (options.coupling != RbmCoupling::coupled || options.formulation != RbmFormulation::nonlinear ||
+         options.algorithm != RbmAlgorithm::reducedNewton))
+        throw InputError(options.file, options.scalingLine,
+                         "'scaling' other than rigid needs the default solver (coupling coupled, formulation "
+                         "nonlinear, algorithm reducedNewton); the thesis' variants fit rotations only");
     return options;
 }
 

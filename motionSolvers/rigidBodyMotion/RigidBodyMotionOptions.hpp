@@ -27,6 +27,9 @@
 //                                                 //     quadratic inverseDistance (a b);
 //                                                 //     power 0.8 inverseDistance (a b)
 //         untangle          on;                   // on | off: repair cells the solve left inverted
+//         scaling           auto;                 // auto | rigid | similar | μ ≥ 0: neighbourhoods may
+//                                                 //   also scale (reducedNewton in 2D; auto: similar
+//                                                 //   there, rigid elsewhere; NeighbourhoodScaling.hpp)
 //         floatingPatches   (outlet "free.*");    // patches (names, groups or regular expressions)
 //                                                 //   whose unconstrained points move freely
 //     }
@@ -35,6 +38,7 @@
 // misspelt keyword must not be ignored silently); bad values list the valid values.
 
 #include "FoamDictionary.hpp"
+#include "NeighbourhoodScaling.hpp"
 #include "PetscSupport.hpp"
 #include "RbmProblem.hpp"
 
@@ -105,6 +109,13 @@ struct RigidBodyMotionOptions {
     std::vector<std::pair<std::string, std::string>> petscOptionList;  // (name, value or ""), parsed
     StiffeningOptions stiffening;
     bool untangle = true;              // untangling stage after a solve that left inverted cells (src/Untangling.hpp)
+    // Rigid neighbourhoods (the thesis' energy) or neighbourhoods that may also scale, whose
+    // scale costs `stiffness` (0: `similar`, free); the default solver in 2D only. `auto` (the
+    // default, automaticScaling): similar where that is implemented, rigid elsewhere
+    // (effectiveScaling in RbmSolverSelection.hpp; docs/motionSolver.md, "Neighbourhood scaling").
+    bool automaticScaling = true;
+    NeighbourhoodScaling scaling;      // when not automatic
+    int scalingLine = 0;               // of the entry, for the error in 3D
     // Patches whose condition neither prescribes nor slides their points (zeroGradient,
     // calculated, ...) keep their surface by default: the points slide on it. Listed here (names,
     // groups or regular expressions, as written), they float like interior points instead.

@@ -461,6 +461,14 @@ std::string RigidBodyMotionSolver::describe() const
         stiffening << ") while every prescribed patch moves rigidly";
         text += stiffening.str();
     }
+    if (o.automaticScaling) {
+        const NeighbourhoodScaling scaling = effectiveScaling(o, impl_->dimension);
+        std::ostringstream auto_;
+        auto_ << ", scaling auto = ";
+        if (scaling.rigid()) auto_ << "rigid";
+        else auto_ << scaling.stiffness;
+        text += auto_.str();
+    }
     return text;
 }
 
@@ -470,7 +478,7 @@ std::string RigidBodyMotionSolver::invertedStepAdvice() const
     double angleDegrees = 0.0;
     double squeeze = 1.0;
     // Measured only when the advice is about the motion (the robust options are in effect).
-    if (robustOptionChanges(impl.options).empty()) {
+    if (robustOptionChanges(impl.options, impl.dimension).empty()) {
         const std::vector<Vector3> target = impl.prescribedTarget();
         const std::vector<Vector3> zero(target.size());
         angleDegrees = BoundaryPath(impl.dimension, impl.referencePoints, impl.groups.offsets, impl.groups.nodes, zero,
@@ -479,7 +487,7 @@ std::string RigidBodyMotionSolver::invertedStepAdvice() const
                        180.0 / std::numbers::pi;
         squeeze = impl.smallestCellSizeRatio();
     }
-    return motion::invertedStepAdvice(impl.options, angleDegrees, squeeze);
+    return motion::invertedStepAdvice(impl.options, impl.dimension, angleDegrees, squeeze);
 }
 
 std::string RigidBodyMotionSolver::fitIntoMemory(const AvailableMemory& available)

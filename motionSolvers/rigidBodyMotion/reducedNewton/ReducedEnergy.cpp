@@ -7,12 +7,16 @@
 
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 namespace rbm::motion {
 
-ReducedEnergy::ReducedEnergy(const RbmProblem& problem) : problem_(problem)
+ReducedEnergy::ReducedEnergy(const RbmProblem& problem, NeighbourhoodScaling scaling) : problem_(problem)
 {
     const int dim = problem.dimension();
+    if (dim != 2 && !scaling.rigid())
+        throw std::invalid_argument("neighbourhoods that scale (scaling) are implemented for planar (2D and "
+                                    "pseudo-2D) cases only; this case is 3D");
     const CellNeighbourGraph& graph = problem.graph();
     weightSums_.assign(problem.unknownNodeCount(), 0.0);
     weightedLengths_.assign(problem.unknownNodeCount(), 0.0);
@@ -26,7 +30,7 @@ ReducedEnergy::ReducedEnergy(const RbmProblem& problem) : problem_(problem)
         }
     }
     if (problem.unknownNodeCount() == 0) return;
-    if (dim == 2) planar_ = std::make_unique<PlanarReducedKernels>(problem);
+    if (dim == 2) planar_ = std::make_unique<PlanarReducedKernels>(problem, scaling);
     else hessian3D_ = std::make_unique<ReducedHessian3D>(problem);
 }
 

@@ -30,6 +30,7 @@
 // unknown node, projected onto the sliding planes (P). Every loop over nodes writes its own
 // node's entries and every sum runs in node order: bit-identical for any thread count.
 
+#include "NeighbourhoodScaling.hpp"
 #include "RbmEnergy.hpp"
 #include "RbmProblem.hpp"
 
@@ -44,7 +45,9 @@ class ReducedHessian3D;
 
 class ReducedEnergy {
 public:
-    explicit ReducedEnergy(const RbmProblem& problem);
+    // scaling: rigid neighbourhoods (the thesis' energy, the default) or similarities
+    // (NeighbourhoodScaling.hpp; planar problems only, std::invalid_argument in 3D).
+    explicit ReducedEnergy(const RbmProblem& problem, NeighbourhoodScaling scaling = {});
     ~ReducedEnergy();
     ReducedEnergy(const ReducedEnergy&) = delete;
     ReducedEnergy& operator=(const ReducedEnergy&) = delete;

@@ -5,6 +5,7 @@
 #include "CoupledLinearizedSolver.hpp"
 #include "CoupledNewtonSolver.hpp"
 #include "DecoupledSolver.hpp"
+#include "InputError.hpp"
 #include "LocalGlobalThenNewton.hpp"
 #include "MeshGenerators.hpp"
 #include "PetscTestEnvironment.hpp"
@@ -62,6 +63,48 @@ TEST(RbmSolverSelection, EachVariantGetsItsSolver)
     EXPECT_TRUE(dynamic_cast<DecoupledSolver*>(makeRbmSolver(problem, optionsOf("coupling decoupled;")).get()));
     EXPECT_TRUE(dynamic_cast<DecoupledSolver*>(
         makeRbmSolver(problem, optionsOf("coupling decoupled; formulation linearized;")).get()));
+}
+
+TEST(RbmSolverSelection, ScalingIsReadAndRefusedWhereItIsNotImplemented)
+{
+    // auto (the default): a scale of stiffness 0.3 for the default solver in 2D, rigid in 3D and
+    // for the variants.
+    EXPECT_TRUE(optionsOf("").automaticScaling);
+    EXPECT_TRUE(optionsOf("scaling auto;").automaticScaling);
+    EXPECT_EQ(effectiveScaling(optionsOf(""), 2).stiffness, 0.3);
+    EXPECT_TRUE(effectiveScaling(optionsOf(""), 3).rigid());
+    EXPECT_TRUE(effectiveScaling(optionsOf("algorithm newton;"), 2).rigid());
+    EXPECT_TRUE(effectiveScaling(optionsOf("formulation linearized;"), 2).rigid());
+    EXPECT_FALSE(optionsOf("scaling rigid;").automaticScaling);
+    EXPECT_TRUE(effectiveScaling(optionsOf("scaling rigid;"), 2).rigid());
+    EXPECT_EQ(effectiveScaling(optionsOf("scaling similar;"), 2).stiffness, 0.0);
+    EXPECT_EQ(effectiveScaling(optionsOf("scaling 2.5;"), 2).stiffness, 2.5);
+    EXPECT_NE(optionsOf("scaling similar;").describe().find("scaling similar"), std::string::npos);
+    EXPECT_NE(optionsOf("scaling rigid;").describe().find("scaling rigid"), std::string::npos);
+    EXPECT_EQ(optionsOf("").describe().find("scaling"), std::string::npos);
+    EXPECT_NO_THROW(optionsOf("algorithm newton;\nscaling rigid;"));
+    auto errorOf = [](const std::string& text) {
+        try {
+            optionsOf(text);
+        } catch (const InputError& error) {
+            return std::string(error.what());
+        }
+        return std::string("no error");
+    };
+    EXPECT_NE(errorOf("scaling -1;").find("'scaling' must be auto, rigid, similar or a number"), std::string::npos);
+    EXPECT_NE(errorOf("scaling loose;").find("invalid value 'loose'"), std::string::npos);
+    // The thesis' variants fit rotations only: a scaling they would ignore is an error.
+    EXPECT_NE(errorOf("algorithm newton;\nscaling similar;").find("needs the default solver"), std::string::npos);
+    EXPECT_NE(errorOf("algorithm newton;\nscaling similar;").find(":2: "), std::string::npos);
+    // 3D: the kernels fit rotations only; the error names the entry's line.
+    const BoxProblem box;
+    try {
+        makeRbmSolver(*box.problem, optionsOf("\nscaling similar;"));
+        ADD_FAILURE() << "scaling in 3D was accepted";
+    } catch (const InputError& error) {
+        EXPECT_EQ(error.line(), 2);
+        EXPECT_NE(std::string(error.what()).find("planar"), std::string::npos);
+    }
 }
 
 TEST(RbmSolverSelection, TheNonlinearAlgorithmsReachTheSameMinimumAndMaxIterationsReachesThem)

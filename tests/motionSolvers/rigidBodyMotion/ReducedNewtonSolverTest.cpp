@@ -83,5 +83,53 @@ TEST(ReducedNewtonSolver, MovesTheWholeMeshRigidlyWhenTheBoundaryMovesRigidly)
     }
 }
 
+TEST(ReducedNewtonSolver, SimilarNeighbourhoodsReproduceASimilarityOfTheBoundary)
+{
+    // Every boundary node shrunk to 0.6 about (0.5, 0.5), turned 50° and shifted: with
+    // `scaling similar` the energy of the similarity itself is zero (each neighbourhood is fitted
+    // by 0.6 R exactly), so it is the minimum; the rigid energy must compress the cells and
+    // ends elsewhere. With a finite scale stiffness a rigid boundary motion is still reproduced.
+    const GridCase c = gridCase(2, 10, false, 3);
+    std::vector<NodeConstraint> constraints(c.points.size());
+    for (int node = 0; node < static_cast<int>(c.points.size()); ++node) {
+        const Vector3& p = c.points[node];
+        if (p.x == 0.0 || p.x == 1.0 || p.y == 0.0 || p.y == 1.0) constraints[node].kind = NodeKind::prescribed;
+    }
+    const RbmProblem problem(2, c.points, c.problem->graph(), constraints, EdgeWeighting::inverseDistanceSquared);
+    auto boundaryMotion = [&](double factor, double degrees) {
+        const Matrix3 rotation = planarRotation(degrees * 3.14159265358979 / 180.0);
+        std::vector<Vector3> u(c.points.size());
+        for (std::size_t node = 0; node < u.size(); ++node) {
+            const Vector3 centred = c.points[node] - Vector3{0.5, 0.5, 0.0};
+            u[node] = factor * (rotation * centred) - centred + Vector3{0.2, -0.1, 0.0};
+        }
+        return u;
+    };
+    const std::vector<Vector3> similarity = boundaryMotion(0.6, 50.0);
+    ReducedNewtonOptions similar = roundOffOptions();
+    similar.scaling.stiffness = 0.0;
+    const RbmResult scaled = ReducedNewtonSolver(problem, similar).solve(similarity);
+    ASSERT_TRUE(scaled.converged) << scaled.reason;
+    EXPECT_LT(largestDifference(scaled.displacement, similarity), 1e-10);
+    EXPECT_LT(scaled.energy, 1e-20);
+    const RbmResult rigid = ReducedNewtonSolver(problem, roundOffOptions()).solve(similarity);
+    ASSERT_TRUE(rigid.converged) << rigid.reason;
+    EXPECT_GT(largestDifference(rigid.displacement, similarity), 1e-2);
+    EXPECT_GT(rigid.energy, 1e-3);
+
+    ReducedNewtonOptions stiffScale = roundOffOptions();
+    stiffScale.scaling.stiffness = 1.0;
+    const std::vector<Vector3> rigidMotion = boundaryMotion(1.0, 120.0);
+    const RbmResult turned = ReducedNewtonSolver(problem, stiffScale).solve(rigidMotion);
+    ASSERT_TRUE(turned.converged) << turned.reason;
+    EXPECT_LT(largestDifference(turned.displacement, rigidMotion), 1e-10);
+    // Between the two: a scale stiffness of 1 on the similarity ends between rigid and similar.
+    const RbmResult between = ReducedNewtonSolver(problem, stiffScale).solve(similarity);
+    ASSERT_TRUE(between.converged) << between.reason;
+    const double offBetween = largestDifference(between.displacement, similarity);
+    EXPECT_GT(offBetween, 1e-4);
+    EXPECT_LT(offBetween, largestDifference(rigid.displacement, similarity));
+}
+
 } // namespace
 } // namespace rbm::motion

@@ -44,6 +44,20 @@ std::vector<double> hessianProduct(ReducedEnergy& energy, const std::vector<Vect
     return y;
 }
 
+// The largest |S v| and the largest difference between S v and the central difference of the
+// gradients at u ± h v.
+std::pair<double, double> hessianAgainstGradientDifferences(const std::vector<double>& hessianTimes,
+                                                            const std::vector<double>& plus,
+                                                            const std::vector<double>& minus, double h)
+{
+    double largest = 0.0, largestError = 0.0;
+    for (std::size_t k = 0; k < hessianTimes.size(); ++k) {
+        largest = std::max(largest, std::abs(hessianTimes[k]));
+        largestError = std::max(largestError, std::abs((plus[k] - minus[k]) / (2.0 * h) - hessianTimes[k]));
+    }
+    return {largest, largestError};
+}
+
 TEST(ReducedEnergy, GradientAndHessianMatchFiniteDifferencesOfTheReducedEnergy)
 {
     for (const auto& [dimension, mirror] : {std::pair{2, false}, {3, false}, {3, true}}) {
@@ -82,15 +96,68 @@ TEST(ReducedEnergy, GradientAndHessianMatchFiniteDifferencesOfTheReducedEnergy)
 
         // S v against the difference of gradients (∇²Ẽ = the Schur complement, file comment).
         const std::vector<double> hessianTimes = hessianProduct(energy, displacement, direction);
-        const std::vector<double> plus = gradientAt(energy, moved(h), problem);
-        const std::vector<double> minus = gradientAt(energy, moved(-h), problem);
-        double largest = 0.0, largestError = 0.0;
-        for (std::size_t k = 0; k < gradient.size(); ++k) {
-            largest = std::max(largest, std::abs(hessianTimes[k]));
-            largestError = std::max(largestError, std::abs((plus[k] - minus[k]) / (2.0 * h) - hessianTimes[k]));
-        }
+        const auto [largest, largestError] = hessianAgainstGradientDifferences(
+            hessianTimes, gradientAt(energy, moved(h), problem), gradientAt(energy, moved(-h), problem), h);
         EXPECT_GT(largest, 1e-2) << dimension;
         EXPECT_LT(largestError, 1e-5 * largest) << dimension << "D mirror " << mirror;
+    }
+}
+
+TEST(ReducedEnergy, WithScalingGradientAndHessianMatchFiniteDifferencesAndStaySymmetric)
+{
+    // Neighbourhoods that scale (NeighbourhoodScaling.hpp), 2D: ∇Ẽ against the slope of Ẽ and
+    // S v against the difference of gradients, for a free scale (similar) and a stiff one.
+    const GridCase c = gridCase(2, 6, false, 5);
+    const RbmProblem& problem = *c.problem;
+    const std::vector<Vector3> prescribed = largeTopMotion(c);
+    for (double stiffness : {0.0, 0.5}) {
+        ReducedEnergy energy(problem, NeighbourhoodScaling{stiffness});
+        std::mt19937 random(11);
+        std::uniform_real_distribution<double> value(-0.05, 0.05);
+        std::vector<Vector3> displacement = prescribed;
+        for (int node : problem.unknownNodes()) {
+            displacement[node] = 0.5 * prescribed[node] + Vector3{value(random), value(random), 0.0};
+            if (problem.kind(node) == NodeKind::sliding) {
+                const Vector3& n = problem.slidingNormal(node);
+                displacement[node] -= (dot(displacement[node], n) - dot(prescribed[node], n)) * n;
+            }
+        }
+        // The scaled energy is below the rigid one (the rigid fit is one of its candidates).
+        EXPECT_LT(energyAt(energy, displacement), energyAt(ReducedEnergy(problem), displacement));
+        const std::vector<double> gradient = gradientAt(energy, displacement, problem);
+        std::vector<double> direction(gradient.size());
+        for (double& d : direction) d = value(random);
+        problem.projectSliding(direction, 2);
+        auto moved = [&](double step) {
+            std::vector<Vector3> u = displacement;
+            for (int a = 0; a < problem.unknownNodeCount(); ++a)
+                for (int q = 0; q < 2; ++q) u[problem.unknownNodes()[a]][q] += step * direction[a * 2 + q];
+            return u;
+        };
+        const double h = 1e-5;
+        const double slope = (energyAt(energy, moved(h)) - energyAt(energy, moved(-h))) / (2.0 * h);
+        double expectedSlope = 0.0;
+        for (std::size_t k = 0; k < gradient.size(); ++k) expectedSlope += gradient[k] * direction[k];
+        EXPECT_GT(std::abs(expectedSlope), 1e-3);
+        EXPECT_NEAR(slope, expectedSlope, 1e-6 * std::abs(expectedSlope)) << "stiffness " << stiffness;
+
+        const std::vector<double> hessianTimes = hessianProduct(energy, displacement, direction);
+        const auto [largest, largestError] = hessianAgainstGradientDifferences(
+            hessianTimes, gradientAt(energy, moved(h), problem), gradientAt(energy, moved(-h), problem), h);
+        EXPECT_GT(largest, 1e-2);
+        // S's per-edge data are single precision (PlanarReducedKernels.hpp): 1e-6 relative.
+        EXPECT_LT(largestError, 1e-5 * largest) << "stiffness " << stiffness;
+
+        std::vector<double> other(direction.size());
+        for (double& d : other) d = value(random);
+        const std::vector<double> otherTimes = hessianProduct(energy, displacement, other);
+        double uSv = 0.0, vSu = 0.0, scale = 0.0;
+        for (std::size_t k = 0; k < other.size(); ++k) {
+            uSv += other[k] * hessianTimes[k];
+            vSu += direction[k] * otherTimes[k];
+            scale += std::abs(other[k] * hessianTimes[k]);
+        }
+        EXPECT_LT(std::abs(uSv - vSu), 1e-12 * scale) << "stiffness " << stiffness;
     }
 }
 
