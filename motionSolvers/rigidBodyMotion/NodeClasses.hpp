@@ -31,6 +31,12 @@ struct NodeClasses {
     std::vector<int> prescribingPatch;        // per node: the patch that prescribes it, heldNode, or -1
 };
 
+// Adds a sliding plane of `normal` (in the problem's frame; `planar`: a 2D problem, where the
+// plane is a line) to a node's constraint: a free node slides on it, a second plane makes it
+// slide on their intersection line (3D), a further one (or a second line in 2D) holds it
+// (prescriber = heldNode). A prescribed node stays prescribed.
+void addSlidingNormal(bool planar, NodeConstraint& constraint, int& prescriber, Vector3 normal, bool mirror);
+
 // `twoD`: the pseudo-2D mesh the problem is solved on, or nullptr in 3D (nodes are mesh points).
 NodeClasses classifyNodes(const BoundaryDescription& boundary, const PseudoTwoDMesh* twoD,
                           const CellNeighbourGraph& graph, UnconstrainedPatches& unconstrained);
