@@ -163,7 +163,9 @@ std::vector<CoupledPair> unifyCoupledClasses(const CyclicCoupling& coupling, Nod
         }
         shareSlidingPlanes(pair, classes, planar);
         if (classes.constraints[pair.a].kind == NodeKind::prescribed) continue;  // held by the planes
-        unknownPairs.push_back({pair.a, pair.b, pair.q});
+        const rbm::Matrix3& q = pair.q;
+        unknownPairs.push_back({pair.a, pair.b, {Vector3{q(0, 0), q(0, 1), q(0, 2)}, Vector3{q(1, 0), q(1, 1), q(1, 2)},
+                                                 Vector3{q(2, 0), q(2, 1), q(2, 2)}}});
     }
     return unknownPairs;
 }

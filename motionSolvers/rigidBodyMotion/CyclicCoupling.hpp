@@ -15,6 +15,7 @@
 //     (3D; held where it also slides on a wall), or stays (2D: the axis is normal to the plane).
 
 #include "CyclicPairs.hpp"
+#include "Rotation.hpp"
 #include "NodeClasses.hpp"
 #include "PseudoTwoDExtraction.hpp"
 #include "RbmProblem.hpp"

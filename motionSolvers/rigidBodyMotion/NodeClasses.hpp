@@ -9,7 +9,9 @@
 //   - a node on two sliding planes slides on their intersection line (3D); on two lines in 2D
 //     or three planes in 3D, it is held where it is;
 //   - on a wedge (axisymmetric) mesh, the points on the axis slide along it;
-//   - a node without neighbours (a point no cell uses) is held.
+//   - a node without neighbours (a point no cell uses) is held;
+//   - the points of cyclic patches are left free here: CyclicCoupling.hpp classifies them with
+//     their partners.
 // In 2D the normals are those of the front plane's frame, their out-of-plane part removed.
 
 #include "BoundaryDescription.hpp"

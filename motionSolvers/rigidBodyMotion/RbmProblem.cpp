@@ -365,12 +365,11 @@ void RbmProblem::checkCoupledPair(const CoupledPair& pair, std::vector<char>& pa
     if (!isUnknown(pair.a) || !isUnknown(pair.b)) throw std::invalid_argument(name + ": a node is prescribed");
     if (paired[pair.a] || paired[pair.b]) throw std::invalid_argument(name + ": a node is in two pairs");
     paired[pair.a] = paired[pair.b] = 1;
-    const rbm::Matrix3 product = pair.q.transposed() * pair.q;
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j)
-            if (std::abs(product(i, j) - (i == j ? 1.0 : 0.0)) > 1e-9)
+            if (std::abs(dot(pair.q[i], pair.q[j]) - (i == j ? 1.0 : 0.0)) > 1e-9)
                 throw std::invalid_argument(name + ": q is not orthogonal");
-    if (dimension_ == 2 && std::abs(pair.q(2, 2) - 1.0) > 1e-9)
+    if (dimension_ == 2 && std::abs(pair.q[2].z - 1.0) > 1e-9)
         throw std::invalid_argument(name + ": q turns the plane of the 2D problem");
     // P_b = q P_a qᵀ: the same number of planes, and q maps a's normals into b's.
     const int planesA = kind(pair.a) != NodeKind::sliding ? 0 : slidesOnLine(pair.a) ? 2 : 1;
@@ -378,7 +377,7 @@ void RbmProblem::checkCoupledPair(const CoupledPair& pair, std::vector<char>& pa
     bool consistent = planesA == planesB;
     for (const Vector3* n : {&slidingNormal(pair.a), &secondSlidingNormal(pair.a)}) {
         if (!consistent || *n == Vector3{}) continue;
-        const Vector3 mapped = pair.q * *n;
+        const Vector3 mapped = pair.map(*n);
         consistent = norm(slidingNormalPart(pair.b, mapped) - mapped) <= 1e-9;
     }
     if (!consistent)
@@ -388,7 +387,7 @@ void RbmProblem::checkCoupledPair(const CoupledPair& pair, std::vector<char>& pa
 void RbmProblem::enforceCoupledPairs(std::span<Vector3> displacement) const
 {
     for (const CoupledPair& pair : coupledPairs_) {
-        Vector3 mapped = pair.q * displacement[pair.a];
+        Vector3 mapped = pair.map(displacement[pair.a]);
         if (dimension_ == 2) mapped.z = 0.0;
         displacement[pair.b] = mapped;
     }
@@ -406,8 +405,8 @@ void RbmProblem::projectCoupledPairs(std::span<double> blockVector, int bs) cons
             va[k] = a[k];
             vb[k] = b[k];
         }
-        const Vector3 mean = 0.5 * (va + pair.q.transposed() * vb);
-        const Vector3 mapped = pair.q * mean;
+        const Vector3 mean = 0.5 * (va + pair.mapBack(vb));
+        const Vector3 mapped = pair.map(mean);
         for (int k = 0; k < dimension_; ++k) {
             a[k] = mean[k];
             b[k] = mapped[k];
@@ -461,7 +460,7 @@ void RbmProblem::slidingOffset(std::span<const Vector3> prescribedDisplacement, 
         const std::size_t b = static_cast<std::size_t>(unknownIndex_[pair.b]) * bs;
         Vector3 offset{};
         for (int k = 0; k < dimension_; ++k) offset[k] = blockVector[a + k];
-        const Vector3 mapped = pair.q * offset;
+        const Vector3 mapped = pair.map(offset);
         for (int k = 0; k < dimension_; ++k) blockVector[b + k] = mapped[k];
     }
 }

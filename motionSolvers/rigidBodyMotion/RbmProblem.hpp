@@ -32,9 +32,9 @@
 // 2D problems use x and y of the points; z is ignored and z displacements are zero.
 
 #include "CellNeighbourGraph.hpp"
-#include "Rotation.hpp"
 #include "Vector3.hpp"
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <mutex>
@@ -65,7 +65,11 @@ struct NodeConstraint {
 struct CoupledPair {
     int a = -1;
     int b = -1;
-    rbm::Matrix3 q = rbm::Matrix3::identity();  // src/Rotation.hpp's, not RbmEnergy.hpp's
+    // q by rows (plain vectors: this header is below both 3×3 matrix types of rbm).
+    std::array<Vector3, 3> q{Vector3{1.0, 0.0, 0.0}, Vector3{0.0, 1.0, 0.0}, Vector3{0.0, 0.0, 1.0}};
+
+    Vector3 map(const Vector3& v) const { return {dot(q[0], v), dot(q[1], v), dot(q[2], v)}; }  // q v
+    Vector3 mapBack(const Vector3& v) const { return v.x * q[0] + v.y * q[1] + v.z * q[2]; }   // qᵀ v
 };
 
 // Edge weights w_ij (docs/method.md §1): the thesis uses uniform; 1/|d|² makes every

@@ -22,11 +22,15 @@
 #                   the patch and its type, nothing written. OpenFOAM 13 (no cyclicAMI): the blocks
 #                   joined by a plain cyclic pair, which rbm supports: the run completes and the
 #                   pair's points move together to 1e-12.
+#   cyclicSector    a 60° annulus sector whose sides are a rotational cyclic pair, its inner arc
+#                   turning: moveDynamicMesh equals rbmMoveMesh to 1e-8, pairs u_B = R u_A to 1e-12.
 #   cyclicChannel   the oscillatingChannel with its sides a translational cyclic pair: 5 steps of
 #                   pimpleFoam equal rbmMoveMesh's to 1e-8 with the pairs together to 1e-12; the
 #                   same decomposed in two across the channel (each pair on one processor),
 #                   `mpirun -np 2 pimpleFoam -parallel`: equal to the serial run to 1e-8, pairs
-#                   to 1e-12.
+#                   to 1e-12. v1912 also: decomposed along the channel (processorCyclic
+#                   patches) a FatalError naming the remedy; with preservePatches equal to the
+#                   serial run to 1e-8.
 #   serial3D        tutorials/cube (3D, 30 linearized sub-steps) with moveDynamicMesh: the points
 #                   equal rbmMoveMesh's to 1e-9 (cells are about 0.1 wide).
 #   flowSteps       tests/data/openfoamPlugin/oscillatingChannel: 5 steps of pimpleFoam (slip
@@ -196,7 +200,8 @@ function(compareCyclicPairs polyMeshDir movedPoints tolerance)
   endif()
 endfunction()
 
-# Runs the flow solver on a decomposed case on 2 ranks.
+# Runs the flow solver on a decomposed case on 2 ranks; the optional second argument is the
+# expected exit (0 by default, FAIL for a run that must stop).
 macro(runFlowSolverOnTwoRanks case)
   # Open MPI refuses root without --allow-run-as-root; 2 ranks on fewer cores need --oversubscribe.
   execute_process(COMMAND id -u OUTPUT_VARIABLE uid OUTPUT_STRIP_TRAILING_WHITESPACE)
@@ -210,7 +215,11 @@ macro(runFlowSolverOnTwoRanks case)
   if(OPENFOAM STREQUAL "13")
     list(APPEND mpiOptions --noprefix)
   endif()
-  runOpenFOAM(${case} 0 pimpleFoam ${MPIEXEC} ${mpiOptions} -x WM_PROJECT_DIR ${flowSolver} -parallel)
+  set(expectedExit 0)
+  if(${ARGC} GREATER 1)
+    set(expectedExit ${ARGV1})
+  endif()
+  runOpenFOAM(${case} ${expectedExit} pimpleFoam ${MPIEXEC} ${mpiOptions} -x WM_PROJECT_DIR ${flowSolver} -parallel)
 endmacro()
 
 function(setControl case keyword value)
@@ -581,6 +590,85 @@ elseif(MODE STREQUAL "cyclicChannel")
   runOpenFOAM(${parallelCase} 0 reconstructPar reconstructPar -latestTime)
   comparePoints(${pluginCase}/0.025/polyMesh/points ${parallelCase}/0.025/polyMesh/points 1e-8)
   compareCyclicPairs(${parallelCase}/constant/polyMesh ${parallelCase}/0.025/polyMesh/points 1e-12)
+  if(OPENFOAM STREQUAL "1912")
+    # Decomposed along the channel, the interface is split between the processors
+    # (processorCyclic patches): refused, naming the patch and the remedy; with
+    # `preservePatches (left right);` the pairs stay on one processor and the run equals the
+    # serial one (its numbering differs, so to the solver's tolerance, not to the bit).
+    file(REMOVE_RECURSE ${parallelCase}/0.025)
+    file(GLOB processors ${parallelCase}/processor*)
+    file(REMOVE_RECURSE ${processors})
+    string(REPLACE "(1 2 1)" "(2 1 1)" text "${text}")
+    file(WRITE ${parallelCase}/system/decomposeParDict "${text}")
+    runOpenFOAM(${parallelCase} 0 decomposePar decomposePar)
+    runFlowSolverOnTwoRanks(${parallelCase} FAIL)
+    expectContains("${pimpleFoam_out}" "is a processorCyclic patch" "pimpleFoam's log")
+    expectContains("${pimpleFoam_out}" "preservePatches" "pimpleFoam's log")
+    file(GLOB processors ${parallelCase}/processor*)
+    file(REMOVE_RECURSE ${processors})
+    file(WRITE ${parallelCase}/system/decomposeParDict "${text}\npreservePatches (left right);\n")
+    runOpenFOAM(${parallelCase} 0 decomposePar decomposePar)
+    runFlowSolverOnTwoRanks(${parallelCase} 0)
+    runOpenFOAM(${parallelCase} 0 reconstructPar reconstructPar -latestTime)
+    comparePoints(${pluginCase}/0.025/polyMesh/points ${parallelCase}/0.025/polyMesh/points 1e-8)
+    compareCyclicPairs(${parallelCase}/constant/polyMesh ${parallelCase}/0.025/polyMesh/points 1e-12)
+  endif()
+
+elseif(MODE STREQUAL "cyclicSector")
+  # A 60° sector of the annulus 1 < r < 2 (one layer, 8 x 16 cells) whose sides are a
+  # rotational cyclic pair about z; the inner arc turns (angularOscillatingDisplacement, up to
+  # 0.2 rad), the outer one is fixed. moveDynamicMesh: equal to rbmMoveMesh, pairs u_B = R u_A.
+  set(source ${RBM_SOURCE_DIR}/tests/data/openfoamPlugin/oscillatingChannel)
+  prepareCase(${source} ${pluginCase})
+  file(READ ${pluginCase}/system/blockMeshDict text)
+  string(REGEX REPLACE "vertices.*$" "" text "${text}")
+  string(APPEND text [=[
+vertices
+(
+    (1 0 0) (2 0 0) (1 1.7320508075688772 0) (0.5 0.8660254037844386 0)
+    (1 0 0.1) (2 0 0.1) (1 1.7320508075688772 0.1) (0.5 0.8660254037844386 0.1)
+);
+blocks ( hex (0 1 2 3 4 5 6 7) (8 16 1) simpleGrading (1 1 1) );
+edges
+(
+    arc 1 2 (1.7320508075688772 1 0)     arc 5 6 (1.7320508075688772 1 0.1)
+    arc 0 3 (0.8660254037844386 0.5 0)   arc 4 7 (0.8660254037844386 0.5 0.1)
+);
+boundary
+(
+    sideA { type cyclic; neighbourPatch sideB; transform rotational; rotationAxis (0 0 1); rotationCentre (0 0 0); faces ((0 1 5 4)); }
+    sideB { type cyclic; neighbourPatch sideA; transform rotational; rotationAxis (0 0 1); rotationCentre (0 0 0); faces ((3 7 6 2)); }
+    inner { type wall; faces ((0 4 7 3)); }
+    outer { type wall; faces ((1 2 6 5)); }
+    frontAndBack { type empty; faces ((0 3 2 1) (4 5 6 7)); }
+);
+]=])
+  if(OPENFOAM STREQUAL "13")
+    string(REPLACE "transform rotational" "transformType rotational" text "${text}")
+  endif()
+  file(WRITE ${pluginCase}/system/blockMeshDict "${text}")
+  file(WRITE ${pluginCase}/0/pointDisplacement [=[
+FoamFile { version 2.0; format ascii; class pointVectorField; object pointDisplacement; }
+dimensions [0 1 0 0 0 0 0];
+internalField uniform (0 0 0);
+boundaryField
+{
+    sideA { type cyclic; }
+    sideB { type cyclic; }
+    inner { type angularOscillatingDisplacement; axis (0 0 1); origin (0 0 0); angle0 0; amplitude 0.2; omega 20; value uniform (0 0 0); }
+    outer { type fixedValue; value uniform (0 0 0); }
+    frontAndBack { type empty; }
+}
+]=])
+  file(REMOVE ${pluginCase}/0/U ${pluginCase}/0/p)
+  runOpenFOAM(${pluginCase} 0 blockMesh blockMesh)
+  file(REMOVE_RECURSE ${rbmCase})
+  file(COPY ${pluginCase}/ DESTINATION ${rbmCase})
+  file(COPY ${source}/constant/dynamicMeshDict DESTINATION ${rbmCase}/constant)
+  runIn(${rbmCase} 0 rbmMoveMesh ${RBM_MOVE_MESH} -noVTK)
+  runOpenFOAM(${pluginCase} 0 moveDynamicMesh ${moveMesh})
+  comparePoints(${rbmCase}/0.025/polyMesh/points ${pluginCase}/0.025/polyMesh/points 1e-8)
+  compareCyclicPairs(${pluginCase}/constant/polyMesh ${pluginCase}/0.025/polyMesh/points 1e-12)
 
 else()
   fail("unknown MODE ${MODE}")

@@ -93,6 +93,38 @@ TEST(CyclicCoupling, ARigidTranslationOfEveryPrescribedPointIsReproduced)
     EXPECT_LE(largest, 1e-12);
 }
 
+TEST(CyclicCoupling, SlipWallsMeetTheInterfaceAndItsCornersSlideAlikeOnBothSides)
+{
+    // The walls slip: the interface's end points slide on the walls on both sides (the pair's
+    // planes are images of each other), through the projected Laplacian's factor.
+    const PolyMesh mesh = channel();
+    std::string slipField = channelField;
+    slipField.replace(slipField.find("walls  { type fixedValue; value uniform (0 0 0); }"),
+                      std::string("walls  { type fixedValue; value uniform (0 0 0); }").size(), "walls  { type slip; }");
+    const io::Dictionary field = pointDisplacementField(slipField);
+    auto solver = rbm::test::makeSolver(mesh, "", &field);
+    const RigidMotion motion{{0.0, 0.0, 1.0}, degrees(10.0), {2.0, 1.0, 0.0}, {0.15, 0.1, 0.0}};
+    solver->setPatchDisplacement("body", patchDisplacement(*solver, "body", [&](const Vector3& x) { return motion.displacement(x); }));
+    const MotionSolveReport report = solver->solve();
+    ASSERT_TRUE(report.converged) << report.reason;
+    EXPECT_EQ(report.invertedCellCount, 0);
+    const auto pairs = partnersByGeometry(mesh, "inlet", "outlet", [](const Vector3& x) { return x + Vector3{4.0, 0.0, 0.0}; });
+    const PairFigures figures = pairFigures(*solver, pairs, rbm::Matrix3::identity());
+    // The inlet's corners: on the walls (y = 0 or 2), moved along them only.
+    double cornerAlong = 0.0, cornerAcross = 0.0;
+    for (const auto& [a, b] : pairs) {
+        const Vector3& x = mesh.points[a];
+        if (x.y != 0.0 && x.y != 2.0) continue;
+        cornerAlong = std::max(cornerAlong, std::abs(solver->pointDisplacement()[a].x));
+        cornerAcross = std::max(cornerAcross, std::abs(solver->pointDisplacement()[a].y));
+    }
+    std::printf("slip walls: max |u_outlet - u_inlet| %.3g, max |u_inlet| %.4g, corners along %.4g, across %.3g\n",
+                figures.mismatch, figures.largest, cornerAlong, cornerAcross);
+    EXPECT_LE(figures.mismatch, 1e-12);
+    EXPECT_GT(cornerAlong, 1e-3);
+    EXPECT_LE(cornerAcross, 1e-12);
+}
+
 namespace {
 
 // The 60° sector of the annulus 1 ≤ r ≤ 2, 8 × 16 cells, its inner arc turned 15° about z.

@@ -11,6 +11,7 @@
 #include "RbmProblem.hpp"
 #include "ReducedNewtonSolver.hpp"
 #include "RigidMotionModes.hpp"
+#include "Rotation.hpp"
 #include "SubStepping.hpp"
 #include "TestCases.hpp"
 
@@ -447,6 +448,12 @@ struct PairCase {
     rbm::Matrix3 q = rbm::rotationMatrix({0.0, 0.0, 1.0}, 30.0 * std::numbers::pi / 180.0);
 };
 
+// q's rows, as CoupledPair holds them.
+std::array<Vector3, 3> rowsOf(const rbm::Matrix3& q)
+{
+    return {Vector3{q(0, 0), q(0, 1), q(0, 2)}, Vector3{q(1, 0), q(1, 1), q(1, 2)}, Vector3{q(2, 0), q(2, 1), q(2, 2)}};
+}
+
 PairCase pairCase()
 {
     PairCase c;
@@ -469,7 +476,7 @@ TEST(CoupledPairs, ProjectionIsTheOrthogonalProjectorOntoThePairAndItsPlanes)
     c.constraints[c.a] = {NodeKind::sliding, normalA};
     c.constraints[c.b] = {NodeKind::sliding, 3.0 * (c.q * normalA)};  // any length
     RbmProblem problem(3, c.mesh.points, c.mesh.graph, c.constraints);
-    problem.setCoupledPairs({{c.a, c.b, c.q}});
+    problem.setCoupledPairs({{c.a, c.b, rowsOf(c.q)}});
     std::mt19937 random(7);
     std::uniform_real_distribution<double> uniform(-1.0, 1.0);
     const std::size_t size = static_cast<std::size_t>(problem.unknownNodeCount()) * 3;
@@ -511,17 +518,17 @@ TEST(CoupledPairs, RejectsPairsTheProjectionCannotTake)
     c.constraints[c.a] = {NodeKind::sliding, {1.0, 0.0, 0.0}};
     c.constraints[c.b] = {NodeKind::sliding, {1.0, 0.0, 0.0}};  // not the image of a's plane
     RbmProblem problem(3, c.mesh.points, c.mesh.graph, c.constraints);
-    EXPECT_THROW(problem.setCoupledPairs({{c.a, c.b, c.q}}), std::invalid_argument);
+    EXPECT_THROW(problem.setCoupledPairs({{c.a, c.b, rowsOf(c.q)}}), std::invalid_argument);
     c.constraints[c.b] = {};
     RbmProblem free(3, c.mesh.points, c.mesh.graph, c.constraints);
-    EXPECT_THROW(free.setCoupledPairs({{c.a, c.b, c.q}}), std::invalid_argument);  // one plane against none
-    EXPECT_THROW(free.setCoupledPairs({{c.a, 0, c.q}}), std::invalid_argument);    // node 0 is prescribed
+    EXPECT_THROW(free.setCoupledPairs({{c.a, c.b, rowsOf(c.q)}}), std::invalid_argument);  // one plane against none
+    EXPECT_THROW(free.setCoupledPairs({{c.a, 0, rowsOf(c.q)}}), std::invalid_argument);    // node 0 is prescribed
     rbm::Matrix3 stretched = c.q;
     stretched.m[0][0] *= 1.1;
     RbmProblem plain(3, c.mesh.points, c.mesh.graph, prescribeBoundary(c.mesh));
-    EXPECT_THROW(plain.setCoupledPairs({{c.a, c.b, stretched}}), std::invalid_argument);
-    EXPECT_THROW(plain.setCoupledPairs({{c.a, c.b, c.q}, {c.b, c.a + 1, c.q}}), std::invalid_argument);  // b twice
-    EXPECT_NO_THROW(plain.setCoupledPairs({{c.a, c.b, c.q}}));
+    EXPECT_THROW(plain.setCoupledPairs({{c.a, c.b, rowsOf(stretched)}}), std::invalid_argument);
+    EXPECT_THROW(plain.setCoupledPairs({{c.a, c.b, rowsOf(c.q)}, {c.b, c.a + 1, rowsOf(c.q)}}), std::invalid_argument);  // b twice
+    EXPECT_NO_THROW(plain.setCoupledPairs({{c.a, c.b, rowsOf(c.q)}}));
 }
 
 TEST(RbmProblemInput, EdgeWeightFactorsScaleTheWeightsAndSurviveANewReference)
