@@ -1,13 +1,15 @@
 // Tests of plain cyclic patches in the solver (CyclicCoupling, through rigidBodyMotionSolver and
 // its rbmMoveMesh front door): a translational channel with a body moved inside, a rotational
 // annulus sector whose inner arc turns (solved in 2D, and in 3D between symmetry planes, where
-// the cyclic points also slide), a rigid translation reproduced, and the variants that refuse
-// cyclic patches. A side's partners are found by brute force from the transform the mesh was
+// the cyclic points also slide), slip walls meeting the interface, a rigid translation
+// reproduced; the pair's node classes made to agree (or the mismatch named), a transform a 2D
+// mesh cannot take, and the variants that refuse cyclic patches. A side's partners are found by brute force from the transform the mesh was
 // built with, not by the code under test.
 
 #include "CyclicCoupling.hpp"
 
 #include "PetscTestEnvironment.hpp"
+#include "PseudoTwoDExtraction.hpp"
 #include "TestCases.hpp"
 
 #include <gtest/gtest.h>
@@ -16,6 +18,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <memory>
 #include <numbers>
 
 namespace rbm::motion {
@@ -214,6 +217,60 @@ TEST(CyclicCoupling, InThreeDTheCyclicPointsOnSymmetryPlanesSlideAndStayPaired)
     EXPECT_LE(run.ringSpread, 2e-4);
     EXPECT_GT(run.figures.largest, 0.01);
     EXPECT_LE(run.largestNormal, 1e-12);  // every point on its symmetry plane
+}
+
+TEST(CyclicCoupling, PairClassesAgreeOrTheMismatchIsNamed)
+{
+    // Classes set by hand on the channel's mesh (its patch names serve the messages); nodes
+    // 10 and 20 stand for a pair through inlet and outlet, q a quarter turn about z.
+    const PolyMesh mesh = channel();
+    CyclicCoupling coupling;
+    coupling.pairs.push_back({10, 20, rbm::rotationMatrix({0.0, 0.0, 1.0}, std::numbers::pi / 2.0), 0, 1});
+    const int n = static_cast<int>(mesh.points.size());
+    auto classes = [&](NodeConstraint a, int prescriberA, NodeConstraint b, int prescriberB) {
+        NodeClasses result{std::vector<NodeConstraint>(n), std::vector<int>(n, -1)};
+        result.constraints[10] = a;
+        result.prescribingPatch[10] = prescriberA;
+        result.constraints[20] = b;
+        result.prescribingPatch[20] = prescriberB;
+        return result;
+    };
+    const NodeConstraint prescribed{NodeKind::prescribed, {}};
+    // A slip plane on b's side acts on a through its image, and b keeps the image of a's.
+    NodeClasses sliding = classes({}, -1, {NodeKind::sliding, {1.0, 0.0, 0.0}}, -1);
+    const std::vector<CoupledPair> pairs = unifyCoupledClasses(coupling, sliding, false, mesh, "boundary");
+    ASSERT_EQ(pairs.size(), 1u);
+    EXPECT_EQ(sliding.constraints[10].kind, NodeKind::sliding);
+    EXPECT_LT(norm(sliding.constraints[10].normal - Vector3{0.0, -1.0, 0.0}), 1e-15);  // qᵀ x = −y
+    EXPECT_LT(norm(sliding.constraints[20].normal - Vector3{1.0, 0.0, 0.0}), 1e-15);
+    // Held on one side: held on both, no pair left.
+    NodeClasses held = classes(prescribed, heldNode, {}, -1);
+    EXPECT_TRUE(unifyCoupledClasses(coupling, held, false, mesh, "boundary").empty());
+    EXPECT_EQ(held.constraints[20].kind, NodeKind::prescribed);
+    EXPECT_EQ(held.prescribingPatch[20], heldNode);
+    // Prescribed by a patch on one side only: the interface would open.
+    NodeClasses open = classes({}, -1, prescribed, 2);
+    const std::string error = rbm::test::solverCases::errorOf([&] { unifyCoupledClasses(coupling, open, false, mesh, "boundary"); });
+    EXPECT_NE(error.find("cyclic patches 'inlet' and 'outlet'"), std::string::npos) << error;
+    EXPECT_NE(error.find("prescribed by patch 'walls'"), std::string::npos) << error;
+}
+
+TEST(CyclicCoupling, ATransformThatTurnsThePlaneOfATwoDMeshIsRefused)
+{
+    const PolyMesh mesh = channel();
+    const auto twoD = std::make_unique<PseudoTwoDMesh>(extractPseudoTwoD(mesh));
+    CyclicPatchPairing pairing;
+    pairing.patchA = 0;
+    pairing.patchB = 1;
+    pairing.rotation = rbm::rotationMatrix({1.0, 0.0, 0.0}, 0.3);
+    pairing.points = partnersByGeometry(mesh, "inlet", "outlet", [](const Vector3& x) { return x + Vector3{4.0, 0.0, 0.0}; });
+    const std::string error = rbm::test::solverCases::errorOf([&] { coupleCyclicNodes(mesh, std::vector{pairing}, twoD.get(), "boundary"); });
+    EXPECT_NE(error.find("cyclic patches 'inlet' and 'outlet': their rotation axis is not normal to the plane"),
+              std::string::npos)
+        << error;
+    pairing.rotation = rbm::Matrix3::identity();
+    const CyclicCoupling coupling = coupleCyclicNodes(mesh, std::vector{pairing}, twoD.get(), "boundary");
+    EXPECT_EQ(coupling.pairs.size(), 9u);  // the front plane's nodes: both planes' points give the same pairs
 }
 
 TEST(CyclicCoupling, TheThesisVariantsRefuseCyclicPatchesNamingThePatchAndTheVariant)
