@@ -172,8 +172,8 @@ RigidBodyMotionSolver::Impl::Impl(RigidBodyMotionSolver& solver, RigidBodyMotion
       graph(std::make_shared<const CellNeighbourGraph>(twoD ? buildCellNeighbourGraph(twoD->planar)
                                                             : buildCellNeighbourGraph(owner.mesh()))),
       cyclic(cyclicCouplingOf(owner, owner.caseDirectory_, twoD.get(), options)),
-      boundaryFile((owner.caseDirectory_ / "constant" / "polyMesh" / "boundary").string()),
       interfaceFactors(interfaceEdgeFactors(cyclic, *graph)),
+      boundaryFile((owner.caseDirectory_ / "constant" / "polyMesh" / "boundary").string()),
       stiffening(options, owner.mesh(), owner.points0(), twoD.get(), *graph, referencePoints, dimension),
       inverted(owner.mesh(), owner.points0(), twoD.get()),
       untangler(owner.mesh(), twoD.get())
