@@ -415,6 +415,7 @@ void MoveMeshRun::computeNodeClasses()
             break;
         case motion::BoundaryNodeClass::sliding: nodeClass = nodeSliding; break;
         case motion::BoundaryNodeClass::free:
+        case motion::BoundaryNodeClass::coupled:
         case motion::BoundaryNodeClass::ignored: continue;
         }
         for (const Label point : boundary[p].meshPoints) {

@@ -23,6 +23,8 @@ enum class BoundaryNodeClass : std::uint8_t {
     sliding,     // unknown, held on the plane through its reference position normal to the normal
     free,        // unknown, moves like an interior node
     ignored,     // not a motion condition (empty, wedge): the 2D handling owns these points
+    coupled,     // a plain cyclic patch: unknown, moves like an interior node, tied to its partner
+                 // point on the neighbour patch (CyclicCoupling.hpp)
 };
 
 struct BoundaryPatchDescription {

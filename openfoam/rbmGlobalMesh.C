@@ -1,10 +1,15 @@
 #include "rbmGlobalMesh.H"
 
+#include "IStringStream.H"
+#include "OStringStream.H"
 #include "PstreamBuffers.H"
 #include "globalIndex.H"
 #include "globalMeshData.H"
 #include "processorPolyPatch.H"
 #include "rbmOpenFOAMVersion.H"
+
+#include <iomanip>
+#include <sstream>
 
 namespace
 {
@@ -27,6 +32,36 @@ void appendFace(Foam::DynamicList<Foam::label>& list, const Foam::face& f, const
     {
         list.append(pointToGlobal[p]);
     }
+}
+
+// The entries of a plain cyclic patch rbm reads (io/CyclicPatchEntries.hpp), from what the patch
+// writes: neighbourPatch and the transform (`transform` in v1912, `transformType` in OpenFOAM
+// 13) with, for a rotation, its axis and centre.
+std::vector<std::pair<std::string, std::string>> cyclicEntries(const Foam::polyPatch& patch)
+{
+    Foam::OStringStream os;
+    patch.write(os);
+    Foam::IStringStream is(os.str());
+    const Foam::dictionary dict(is);
+    std::vector<std::pair<std::string, std::string>> entries;
+    for (const char* keyword : {"neighbourPatch", "transform", "transformType"})
+    {
+        if (dict.found(keyword))
+        {
+            entries.emplace_back(keyword, Foam::word(dict.lookup(keyword)));
+        }
+    }
+    for (const char* keyword : {"rotationAxis", "rotationCentre"})
+    {
+        if (dict.found(keyword))
+        {
+            const Foam::vector v(dict.lookup(keyword));
+            std::ostringstream text;
+            text << std::setprecision(17) << '(' << v.x() << ' ' << v.y() << ' ' << v.z() << ')';
+            entries.emplace_back(keyword, text.str());
+        }
+    }
+    return entries;
 }
 
 void appendHostFace(rbm::host::HostMesh& host, const Foam::labelList& encoded, Foam::label& i)
@@ -55,7 +90,9 @@ Foam::rbmGlobalMesh::rbmGlobalMesh(const polyMesh& mesh, const pointField& point
             {
                 FatalErrorInFunction
                     << "rigidBodyMotionSolver: patch " << patches[patchi].name() << " is a "
-                    << patches[patchi].type() << " patch; only plain processor patches are supported."
+                    << patches[patchi].type() << " patch; only plain processor patches are supported"
+                    << " (a processorCyclic is a cyclic interface split between processors: keep each"
+                    << " cyclic pair on one processor with preservePatches in decomposeParDict)."
                     << exit(FatalError);
             }
         }
@@ -179,6 +216,10 @@ Foam::rbmGlobalMesh::rbmGlobalMesh(const polyMesh& mesh, const pointField& point
         rbm::host::HostPatch hostPatch;
         hostPatch.name = pp.name();
         hostPatch.type = pp.type();
+        if (hostPatch.type == "cyclic")
+        {
+            hostPatch.entries = cyclicEntries(pp);
+        }
         for (const word& group : pp.inGroups())
         {
             hostPatch.groups.push_back(group);

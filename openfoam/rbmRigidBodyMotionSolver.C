@@ -35,12 +35,25 @@ void appendNormals(std::vector<double>& normals, const Foam::vector& n, Foam::la
     }
 }
 
-// A patch whose points are tied to another patch's. OpenFOAM v1912's AMI patches answer
-// coupled() false (they are coupled by interpolation, not face to face) but still derive from
-// coupledPolyPatch; the names catch the interface types of later versions too.
+// A plain cyclic patch (translational or rotational): rbm ties its points to their partners on
+// the neighbour patch (docs/openfoamPlugin.md). Not its derived types (cyclicSlip,
+// nonuniformTransformCyclic, processorCyclic), which have other type names.
+bool isPlainCyclic(const Foam::polyPatch& patch)
+{
+    return std::string(patch.type()) == "cyclic";
+}
+
+// A patch whose points are tied to another patch's, other than a plain cyclic. OpenFOAM
+// v1912's AMI patches answer coupled() false (they are coupled by interpolation, not face to
+// face) but still derive from coupledPolyPatch; the names catch the interface types of later
+// versions too.
 bool isCoupledOrInterface(const Foam::polyPatch& patch)
 {
     const std::string type(patch.type());
+    if (isPlainCyclic(patch))
+    {
+        return false;
+    }
     return patch.coupled() || Foam::isA<Foam::coupledPolyPatch>(patch)
         || type.find("AMI") != std::string::npos || type.rfind("nonConformal", 0) == 0
         || type.rfind("cyclic", 0) == 0;
@@ -123,14 +136,19 @@ void Foam::rbmRigidBodyMotionSolver::construct(const dictionary& dict)
         {
             FatalErrorInFunction
                 << "rigidBodyMotionSolver: patch " << patch.name() << " is of type " << patch.type()
-                << ", a coupled or interface patch; rbm's motion solver does not support coupled or"
-                << " interface patches (cyclic, cyclicAMI, cyclicACMI, cyclicPeriodicAMI,"
-                << " nonConformal*): the two sides would move independently and come apart."
+                << ", a coupled or interface patch; rbm's motion solver supports plain cyclic patches"
+                << " only, not cyclicAMI, cyclicACMI, cyclicPeriodicAMI, cyclicSlip,"
+                << " nonuniformTransformCyclic or nonConformal*: the two sides would move"
+                << " independently and come apart."
                 << exit(FatalError);
         }
         if (patch.type() == "empty" || patch.type() == "wedge")
         {
             b.nodeClass = rbm::host::HostNodeClass::ignored;
+        }
+        else if (isPlainCyclic(patch))
+        {
+            b.nodeClass = rbm::host::HostNodeClass::coupled;
         }
         else if (field.fixesValue())
         {

@@ -58,6 +58,7 @@ BoundaryDescription PatchBoundaryConditions::describe() const
         case PatchNodeClass::prescribed: patch.nodeClass = BoundaryNodeClass::prescribed; break;
         case PatchNodeClass::free: patch.nodeClass = BoundaryNodeClass::free; break;
         case PatchNodeClass::ignored: patch.nodeClass = BoundaryNodeClass::ignored; break;
+        case PatchNodeClass::coupled: patch.nodeClass = BoundaryNodeClass::coupled; break;
         case PatchNodeClass::sliding:
             patch.nodeClass = BoundaryNodeClass::sliding;
             patch.mirror = condition->isMirrorPlane();

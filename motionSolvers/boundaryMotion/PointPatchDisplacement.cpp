@@ -193,10 +193,12 @@ std::unique_ptr<PointPatchDisplacement> makePointNormalSliding(const PointPatchC
 
 bool isUnsupportedConstraintPatchType(const std::string& type)
 {
-    static const std::vector<std::string> unsupported{"cyclic",          "cyclicAMI",  "cyclicACMI", "cyclicSlip",
-                                                      "processor",       "processorCyclic", "nonConformalCyclic",
-                                                      "cyclicPeriodicAMI", "cyclicRepeatAMI"};
-    return std::find(unsupported.begin(), unsupported.end(), type) != unsupported.end();
+    // Coupled and interface patches other than plain cyclic: their sides would move apart.
+    static const std::vector<std::string> unsupported{"cyclicAMI",         "cyclicACMI",      "cyclicSlip",
+                                                      "cyclicPeriodicAMI", "cyclicRepeatAMI", "nonuniformTransformCyclic",
+                                                      "processor",         "processorCyclic"};
+    return std::find(unsupported.begin(), unsupported.end(), type) != unsupported.end() ||
+           type.rfind("nonConformal", 0) == 0;
 }
 
 } // namespace
@@ -210,6 +212,7 @@ std::string_view patchNodeClassName(PatchNodeClass nodeClass)
     case PatchNodeClass::sliding: return "sliding";
     case PatchNodeClass::free: return "free";
     case PatchNodeClass::ignored: return "ignored";
+    case PatchNodeClass::coupled: return "coupled";
     }
     return "unknown";
 }
@@ -357,6 +360,13 @@ void registerBuiltinPointPatchDisplacements(PointPatchDisplacementRegistry& regi
                 return std::unique_ptr<PointPatchDisplacement>(std::make_unique<Unconstrained>(c, type, PatchNodeClass::ignored));
             }),
             type);
+    // A plain cyclic patch: its points pair with the neighbour patch's (CyclicCoupling.hpp).
+    registry.add(
+        "cyclic",
+        make([](const io::Dictionary&, const PointPatchContext& c) {
+            return std::unique_ptr<PointPatchDisplacement>(std::make_unique<Unconstrained>(c, "cyclic", PatchNodeClass::coupled));
+        }),
+        "cyclic");
     registry.add("slip", make([](const io::Dictionary&, const PointPatchContext& c) {
                      return makePointNormalSliding(c, "slip");
                  }));

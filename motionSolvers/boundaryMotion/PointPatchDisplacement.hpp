@@ -81,6 +81,7 @@ enum class PatchNodeClass : std::uint8_t {
     sliding,     // unknown, held on the plane through its reference position normal to slidingNormal()
     free,        // unknown, moves like an interior node
     ignored,     // not a motion condition (empty, wedge): the 2D handling owns these points
+    coupled,     // cyclic: unknown, tied to the partner points of the neighbour patch
 };
 std::string_view patchNodeClassName(PatchNodeClass nodeClass);
 

@@ -50,7 +50,7 @@ PolyMesh toPolyMesh(const HostMesh& host)
     mesh.owner.assign(host.owner.begin(), host.owner.end());
     mesh.neighbour.assign(host.neighbour.begin(), host.neighbour.end());
     for (const HostPatch& patch : host.patches)
-        mesh.patches.push_back({patch.name, patch.type, patch.groups, patch.startFace, patch.faceCount, {}});
+        mesh.patches.push_back({patch.name, patch.type, patch.groups, patch.startFace, patch.faceCount, patch.entries});
     return mesh;
 }
 
@@ -68,6 +68,7 @@ motion::BoundaryDescription toBoundaryDescription(const PolyMesh& mesh, const st
         case HostNodeClass::prescribed: patch.nodeClass = motion::BoundaryNodeClass::prescribed; break;
         case HostNodeClass::free: patch.nodeClass = motion::BoundaryNodeClass::free; break;
         case HostNodeClass::ignored: patch.nodeClass = motion::BoundaryNodeClass::ignored; break;
+        case HostNodeClass::coupled: patch.nodeClass = motion::BoundaryNodeClass::coupled; break;
         case HostNodeClass::sliding:
             patch.nodeClass = motion::BoundaryNodeClass::sliding;
             patch.mirror = host.mirror;

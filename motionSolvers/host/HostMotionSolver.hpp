@@ -22,6 +22,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace rbm::host {
@@ -32,6 +33,9 @@ struct HostPatch {
     std::vector<std::string> groups;  // inGroups
     int startFace = 0;
     int faceCount = 0;
+    // The patch dictionary's other entries as in constant/polyMesh/boundary ("keyword", "value
+    // text"); read for cyclic patches: neighbourPatch, transform, rotationAxis, rotationCentre.
+    std::vector<std::pair<std::string, std::string>> entries;
 };
 
 // The mesh at its reference points (points0), in OpenFOAM's face-based form.
@@ -49,6 +53,7 @@ enum class HostNodeClass {
     sliding,     // unknown, held on the plane normal to slidingNormals through its reference position
     free,        // unknown, moves like an interior point
     ignored,     // empty / wedge planes of a pseudo-2D mesh: rbm solves in 2D and moves both planes
+    coupled,     // a plain cyclic patch: unknown, tied to its partner points on the neighbour patch
 };
 
 // How the host's boundary conditions constrain one patch (one per mesh patch, in patch order).

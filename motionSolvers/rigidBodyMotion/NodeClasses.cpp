@@ -4,17 +4,8 @@
 
 namespace rbm::motion {
 
-namespace {
-
-// Adds a sliding plane (a line in 2D) of 3D normal `normal` to a node's constraint: a second
-// plane makes it slide on their intersection line (3D), a further one holds it.
-void addSlidingPlane(const PseudoTwoDMesh* twoD, NodeConstraint& constraint, int& prescriber, Vector3 normal,
-                     bool mirror)
+void addSlidingNormal(bool planar, NodeConstraint& constraint, int& prescriber, Vector3 normal, bool mirror)
 {
-    if (twoD) {
-        normal = twoD->frame.toLocal(normal);
-        normal.z = 0.0;
-    }
     const double length = norm(normal);
     if (!(length > 1e-8)) return;  // a plane parallel to the 2D plane: no in-plane constraint
     normal /= length;
@@ -22,17 +13,30 @@ void addSlidingPlane(const PseudoTwoDMesh* twoD, NodeConstraint& constraint, int
         constraint = {NodeKind::sliding, normal, mirror};
     } else if (norm(cross(constraint.normal, normal)) <= 1e-6) {
         constraint.mirror = constraint.mirror || mirror;  // a mirror on the same plane
-    } else if (!twoD && constraint.secondNormal == Vector3{}) {
+    } else if (!planar && constraint.secondNormal == Vector3{}) {
         // Two different planes (3D): the node slides along their intersection line.
         constraint.secondNormal = normal;
-    } else if (!twoD && std::abs(dot(normal, cross(constraint.normal, constraint.secondNormal))) <=
-                            1e-6 * norm(cross(constraint.normal, constraint.secondNormal))) {
+    } else if (!planar && std::abs(dot(normal, cross(constraint.normal, constraint.secondNormal))) <=
+                              1e-6 * norm(cross(constraint.normal, constraint.secondNormal))) {
         // A further plane through the same line (its normal ⟂ the line): still that line.
     } else {
         // Two lines in 2D meet in a point, so do three planes in 3D: the node stays.
         constraint = {NodeKind::prescribed, {}};
         prescriber = heldNode;
     }
+}
+
+namespace {
+
+// Adds a sliding plane (a line in 2D) of 3D normal `normal` to a node's constraint.
+void addSlidingPlane(const PseudoTwoDMesh* twoD, NodeConstraint& constraint, int& prescriber, Vector3 normal,
+                     bool mirror)
+{
+    if (twoD) {
+        normal = twoD->frame.toLocal(normal);
+        normal.z = 0.0;
+    }
+    addSlidingNormal(twoD != nullptr, constraint, prescriber, normal, mirror);
 }
 
 // Wedge meshes: the points on the axis slide along it.
@@ -65,7 +69,8 @@ NodeClasses classifyNodes(const BoundaryDescription& boundary, const PseudoTwoDM
     for (std::size_t patch = 0; patch < conditions.size(); ++patch) {
         const BoundaryPatchDescription& condition = conditions[patch];
         const BoundaryNodeClass nodeClass = condition.nodeClass;
-        if (nodeClass == BoundaryNodeClass::ignored) continue;
+        // Cyclic points are classified with their partners (CyclicCoupling.hpp).
+        if (nodeClass == BoundaryNodeClass::ignored || nodeClass == BoundaryNodeClass::coupled) continue;
         // A patch its condition leaves unconstrained keeps its surface unless it floats
         // (UnconstrainedPatches.hpp).
         if (nodeClass == BoundaryNodeClass::free && unconstrained.floats(static_cast<Label>(patch))) continue;

@@ -45,6 +45,7 @@ RbmProblem::RbmProblem(int dimension, std::vector<Vector3> referencePoints, Cell
 RbmProblem RbmProblem::withReferencePoints(std::vector<Vector3> referencePoints) const
 {
     RbmProblem moved(dimension_, std::move(referencePoints), graph_, constraints_, weighting_);
+    moved.coupledPairs_ = coupledPairs_;  // checked already
     if (edgeWeightFactors_) {
         moved.edgeWeightFactors_ = edgeWeightFactors_;  // checked already
         moved.computeEdgeWeights();
@@ -349,8 +350,75 @@ double RbmProblem::shortestNeighbourDistance(int node) const
     return shortest;
 }
 
+void RbmProblem::setCoupledPairs(std::vector<CoupledPair> pairs)
+{
+    std::vector<char> paired(static_cast<std::size_t>(nodeCount()), 0);
+    for (const CoupledPair& pair : pairs) checkCoupledPair(pair, paired);
+    coupledPairs_ = std::move(pairs);
+}
+
+void RbmProblem::checkCoupledPair(const CoupledPair& pair, std::vector<char>& paired) const
+{
+    const std::string name = "RBM problem: coupled pair " + std::to_string(pair.a) + "–" + std::to_string(pair.b);
+    if (pair.a < 0 || pair.b < 0 || pair.a >= nodeCount() || pair.b >= nodeCount() || pair.a == pair.b)
+        throw std::invalid_argument(name + ": not two different nodes of the problem");
+    if (!isUnknown(pair.a) || !isUnknown(pair.b)) throw std::invalid_argument(name + ": a node is prescribed");
+    if (paired[pair.a] || paired[pair.b]) throw std::invalid_argument(name + ": a node is in two pairs");
+    paired[pair.a] = paired[pair.b] = 1;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            if (std::abs(dot(pair.q[i], pair.q[j]) - (i == j ? 1.0 : 0.0)) > 1e-9)
+                throw std::invalid_argument(name + ": q is not orthogonal");
+    if (dimension_ == 2 && std::abs(pair.q[2].z - 1.0) > 1e-9)
+        throw std::invalid_argument(name + ": q turns the plane of the 2D problem");
+    // P_b = q P_a qᵀ: the same number of planes, and q maps a's normals into b's.
+    const int planesA = kind(pair.a) != NodeKind::sliding ? 0 : slidesOnLine(pair.a) ? 2 : 1;
+    const int planesB = kind(pair.b) != NodeKind::sliding ? 0 : slidesOnLine(pair.b) ? 2 : 1;
+    bool consistent = planesA == planesB;
+    for (const Vector3* n : {&slidingNormal(pair.a), &secondSlidingNormal(pair.a)}) {
+        if (!consistent || *n == Vector3{}) continue;
+        const Vector3 mapped = pair.map(*n);
+        consistent = norm(slidingNormalPart(pair.b, mapped) - mapped) <= 1e-9;
+    }
+    if (!consistent)
+        throw std::invalid_argument(name + ": the sliding constraints of the two nodes do not correspond under q");
+}
+
+void RbmProblem::enforceCoupledPairs(std::span<Vector3> displacement) const
+{
+    for (const CoupledPair& pair : coupledPairs_) {
+        Vector3 mapped = pair.map(displacement[pair.a]);
+        if (dimension_ == 2) mapped.z = 0.0;
+        displacement[pair.b] = mapped;
+    }
+}
+
+void RbmProblem::projectCoupledPairs(std::span<double> blockVector, int bs) const
+{
+    // The orthogonal projector onto {u_b = q u_a}: the nearest (a', q a') to (a, b) has
+    // a' = (a + qᵀ b)/2 (q orthogonal). In 2D the z entries are absent and q's z column unused.
+    for (const CoupledPair& pair : coupledPairs_) {
+        double* a = blockVector.data() + static_cast<std::size_t>(unknownIndex_[pair.a]) * bs;
+        double* b = blockVector.data() + static_cast<std::size_t>(unknownIndex_[pair.b]) * bs;
+        Vector3 va{}, vb{};
+        for (int k = 0; k < dimension_; ++k) {
+            va[k] = a[k];
+            vb[k] = b[k];
+        }
+        const Vector3 mean = 0.5 * (va + pair.mapBack(vb));
+        const Vector3 mapped = pair.map(mean);
+        for (int k = 0; k < dimension_; ++k) {
+            a[k] = mean[k];
+            b[k] = mapped[k];
+        }
+    }
+}
+
 void RbmProblem::projectSliding(std::span<double> blockVector, int bs) const
 {
+    // Pairs first, then the planes: with P_b = q P_a qᵀ (setCoupledPairs) the two projectors
+    // commute, so the product is the orthogonal projector onto both constraints.
+    projectCoupledPairs(blockVector, bs);
     if (slidingNodeCount_ == 0) return;
     const bool hasRotations = bs == blockSize();
     for (int a = 0; a < unknownNodeCount(); ++a) {
@@ -385,6 +453,15 @@ void RbmProblem::slidingOffset(std::span<const Vector3> prescribedDisplacement, 
         if (dimension_ == 2) given.z = 0.0;
         const Vector3 offset = slidingNormalPart(node, given);  // c n (+ c' m̂ on a line)
         for (int k = 0; k < dimension_; ++k) blockVector[static_cast<std::size_t>(a) * bs + k] = offset[k];
+    }
+    // A pair's offsets correspond too, so that offset + projected direction keeps u_b = q u_a.
+    for (const CoupledPair& pair : coupledPairs_) {
+        const std::size_t a = static_cast<std::size_t>(unknownIndex_[pair.a]) * bs;
+        const std::size_t b = static_cast<std::size_t>(unknownIndex_[pair.b]) * bs;
+        Vector3 offset{};
+        for (int k = 0; k < dimension_; ++k) offset[k] = blockVector[a + k];
+        const Vector3 mapped = pair.map(offset);
+        for (int k = 0; k < dimension_; ++k) blockVector[b + k] = mapped[k];
     }
 }
 

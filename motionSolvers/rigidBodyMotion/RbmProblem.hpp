@@ -24,11 +24,17 @@
 // each plane, only ω = 0 is invariant under two); the core does not impose that: a line
 // node's rotation stays free and `mirror` is ignored for it.
 //
+// Coupled pairs: two unknown nodes a and b tied by a cyclic patch (src/CyclicPairs.hpp) move
+// together, u_b = q u_a with q orthogonal (I for a translational cyclic, the rotation of a
+// rotational one). Only the reduced Newton solver honours them (its iteration stays in the
+// subspace through projectSliding); the other variants' callers refuse them.
+//
 // 2D problems use x and y of the points; z is ignored and z displacements are zero.
 
 #include "CellNeighbourGraph.hpp"
 #include "Vector3.hpp"
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <mutex>
@@ -52,6 +58,18 @@ struct NodeConstraint {
     // Sliding only, 3D only: the normal of a second plane (zero: none). Nonzero makes the node
     // slide on the line where both planes meet (see the header comment).
     Vector3 secondNormal{};
+};
+
+// Two unknown nodes whose displacements are tied: u_b = q u_a (see the header comment). In 2D
+// q turns about z only (its z row and column are those of I).
+struct CoupledPair {
+    int a = -1;
+    int b = -1;
+    // q by rows (plain vectors: this header is below both 3×3 matrix types of rbm).
+    std::array<Vector3, 3> q{Vector3{1.0, 0.0, 0.0}, Vector3{0.0, 1.0, 0.0}, Vector3{0.0, 0.0, 1.0}};
+
+    Vector3 map(const Vector3& v) const { return {dot(q[0], v), dot(q[1], v), dot(q[2], v)}; }  // q v
+    Vector3 mapBack(const Vector3& v) const { return v.x * q[0] + v.y * q[1] + v.z * q[2]; }   // qᵀ v
 };
 
 // Edge weights w_ij (docs/method.md §1): the thesis uses uniform; 1/|d|² makes every
@@ -125,6 +143,16 @@ public:
     // problem it rebuilds and every sub-step's problem hold the same factors.
     void setEdgeWeightFactors(std::shared_ptr<const std::vector<double>> factors);
     const std::vector<double>& edgeWeightFactors() const;
+    // Ties pairs of unknown nodes, u_b = q u_a (replacing any pairs set before; empty: none);
+    // kept by withReferencePoints(). Create solvers after this call. Throws
+    // std::invalid_argument for a node that is prescribed, in two pairs or paired with itself,
+    // a q that is not orthogonal (or turns the plane in 2D), or sliding constraints of a and b
+    // that q does not map onto each other (the projection below is symmetric only then).
+    void setCoupledPairs(std::vector<CoupledPair> pairs);
+    const std::vector<CoupledPair>& coupledPairs() const { return coupledPairs_; }
+    bool hasCoupledPairs() const { return !coupledPairs_.empty(); }
+    // u_b ← q u_a for every pair, exactly (the last rounding of an iteration, untangling).
+    void enforceCoupledPairs(std::span<Vector3> displacement) const;
     // Unit normal of a sliding node (zero vector for other nodes), in the problem's dimension.
     const Vector3& slidingNormal(int node) const { return unitNormals_.empty() ? noNormal : unitNormals_[node]; }
     // Unit second normal m̂ of a line node, orthogonal to slidingNormal(node); zero for every
@@ -170,7 +198,9 @@ public:
 
     // Sliding constraint in the unknown space. A block vector has blockSize entries per
     // unknown node with the displacement first (blockSize() for the coupled unknowns,
-    // dimension() for displacement-only systems). projectSliding removes the normal
+    // dimension() for displacement-only systems). projectSliding first puts every coupled
+    // pair's displacements onto u_b = q u_a, orthogonally (a ← (a + qᵀ b)/2, b ← q a; the
+    // rotations are left alone), then removes the normal
     // component of every sliding node's displacement (P = I − n nᵀ; on a line
     // P = I − n nᵀ − m̂ m̂ᵀ) and, when the vector
     // holds rotations (blockSize == blockSize()), the in-plane components of a mirror node's
@@ -183,7 +213,7 @@ public:
     // (I − P) δ = 0 for projected right-hand sides.
     void projectSlidingBlocks(std::span<double> blockValues, int blockSize) const;
     // The u-part offset c n of every sliding node (c = n·prescribed displacement), zero
-    // elsewhere: states with u − offset tangential satisfy every sliding constraint.
+    // elsewhere, and q times a's offset at b of every coupled pair: states with u − offset tangential satisfy every sliding constraint.
     void slidingOffset(std::span<const Vector3> prescribedDisplacement, std::span<double> blockVector,
                        int blockSize) const;
     void slidingOffset(std::span<const Vector3> prescribedDisplacement, std::span<double> blockVector) const
@@ -204,6 +234,8 @@ private:
     void buildBlockPattern();
     void checkBlockPattern() const;
     void computeEdgeWeights();
+    void checkCoupledPair(const CoupledPair& pair, std::vector<char>& paired) const;
+    void projectCoupledPairs(std::span<double> blockVector, int blockSize) const;
     // The position of block (b, a) in row b of the pattern, −1 if there is none.
     int reversePosition(int a, int b) const;
     // visit(e, a, b) for every graph edge e = (i → j) with i and j unknown (a, b their indices).
@@ -236,6 +268,7 @@ private:
     double minimumEdgeLength_ = 0.0;
     double meanEdgeLength_ = 0.0;
     int slidingNodeCount_ = 0;
+    std::vector<CoupledPair> coupledPairs_;
 };
 
 // Per-node state: displacements and rotations of ALL nodes (prescribed nodes hold their

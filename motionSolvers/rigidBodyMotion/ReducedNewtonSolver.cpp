@@ -167,6 +167,8 @@ RbmResult ReducedNewtonSolver::finishedResult(ReducedIterate point, RbmResult re
 {
     const int n = problem_.nodeCount();
     result.displacement = std::move(point.displacement);
+    // Every iterate lies on u_b = q u_a up to the rounding of its steps; the result exactly.
+    problem_.enforceCoupledPairs(result.displacement);
     result.rotation.assign(n, Vector3{});
     if (point.rotations.size() == static_cast<std::size_t>(n))
         for (int node : problem_.unknownNodes())

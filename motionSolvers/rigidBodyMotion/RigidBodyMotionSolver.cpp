@@ -3,6 +3,8 @@
 #include "CellNeighbourGraph.hpp"
 #include "CellSizeRatio.hpp"
 #include "CurvedPatchProjection.hpp"
+#include "CyclicCoupling.hpp"
+#include "CyclicPatchEntries.hpp"
 #include "EdgeStiffening.hpp"
 #include "InputError.hpp"
 #include "InvertedCellCounter.hpp"
@@ -29,7 +31,8 @@
 #include <stdexcept>
 
 // The solver is a driver over named parts, each in its own file:
-//   node classes       NodeClasses (which nodes are prescribed, slide or float; their groups)
+//   node classes       NodeClasses (which nodes are prescribed, slide or float; their groups),
+//                      CyclicCoupling (the node pairs of cyclic patches, their classes agreeing)
 //   unconstrained      UnconstrainedPatches (zeroGradient-like patches slide or float),
 //                      CurvedPatchProjection (and stay on their surface where it is curved)
 //   stiffening         EdgeStiffening (the edge factors in effect, `stiffening auto`'s rule)
@@ -55,6 +58,38 @@ std::unique_ptr<PseudoTwoDMesh> pseudoTwoDMeshOf(const PolyMesh& mesh)
     return std::make_unique<PseudoTwoDMesh>(extractPseudoTwoD(mesh));
 }
 
+// The node pairs of the mesh's plain cyclic patches (CyclicCoupling.hpp), checked against the
+// boundary conditions and the chosen variant: only the reduced Newton solver keeps its iterates
+// in the subspace u_b = q u_a.
+CyclicCoupling cyclicCouplingOf(const MotionSolver& solver, const std::filesystem::path& caseDirectory,
+                                const PseudoTwoDMesh* twoD, const RigidBodyMotionOptions& options)
+{
+    const PolyMesh& mesh = solver.mesh();
+    const std::string file = (caseDirectory / "constant" / "polyMesh" / "boundary").string();
+    const std::vector<CyclicPatchSpec> specs = io::readCyclicPatchSpecs(mesh, file);
+    for (std::size_t p = 0; p < mesh.patches.size(); ++p) {
+        const bool cyclicPatch = mesh.patches[p].type == "cyclic";
+        if (cyclicPatch != (solver.boundary()[p].nodeClass == BoundaryNodeClass::coupled))
+            throw InputError(file, 0,
+                             "patch '" + mesh.patches[p].name + "' is of type " + mesh.patches[p].type +
+                                 (cyclicPatch ? " but its boundary condition does not couple it (expected type cyclic)"
+                                              : " but its boundary condition is cyclic"));
+    }
+    if (specs.empty()) return {};
+    const bool reducedNewton = options.coupling == RbmCoupling::coupled &&
+                               options.formulation == RbmFormulation::nonlinear &&
+                               options.algorithm == RbmAlgorithm::reducedNewton;
+    if (!reducedNewton)
+        throw InputError(options.file, 0,
+                         "rigidBodyMotionSolver: cyclic patch '" + mesh.patches[specs.front().patch].name +
+                             "': the variant coupling " + std::string(couplingName(options.coupling)) + ", formulation " +
+                             std::string(formulationName(options.formulation)) + ", algorithm " +
+                             std::string(algorithmName(options.algorithm)) +
+                             " does not support cyclic patches; only the default (coupling coupled, formulation "
+                             "nonlinear, algorithm reducedNewton) ties their points together");
+    return coupleCyclicNodes(mesh, pairCyclicPatches(mesh, solver.points0(), specs, file), twoD, file);
+}
+
 } // namespace
 
 // ---------------------------------------------------------------------------------------
@@ -67,6 +102,9 @@ struct RigidBodyMotionSolver::Impl {
     int dimension;
     std::vector<Vector3> referencePoints;  // per node (2D: frame coordinates of the front plane)
     std::shared_ptr<const CellNeighbourGraph> graph;
+    CyclicCoupling cyclic;                  // node pairs of the cyclic patches
+    std::vector<double> interfaceFactors;   // interfaceEdgeFactors(cyclic); empty without pairs
+    std::string boundaryFile;               // constant/polyMesh/boundary, for messages
     EdgeStiffening stiffening;
     InvertedCellCounter inverted;
     RbmUntangler untangler;
@@ -76,6 +114,7 @@ struct RigidBodyMotionSolver::Impl {
     // twice, 66 bytes per node in 3D).
     std::vector<int> prescribingPatch;     // per node: patch that prescribes it, heldNode, or -1
     PrescribedGroups groups;               // prescribed nodes by prescribing patch
+    std::vector<CoupledPair> coupledPairs;  // the cyclic pairs of unknown nodes, for every problem
     std::vector<std::uint8_t> pointIsPrescribed;  // per mesh point: written by a condition, not by the solver
     std::unique_ptr<RbmProblem> problem;
     std::unique_ptr<RbmSolver> baseSolver;  // for `problem`, kept between solve() calls
@@ -132,6 +171,9 @@ RigidBodyMotionSolver::Impl::Impl(RigidBodyMotionSolver& solver, RigidBodyMotion
       referencePoints(twoD ? twoD->planar.points : owner.points0()),
       graph(std::make_shared<const CellNeighbourGraph>(twoD ? buildCellNeighbourGraph(twoD->planar)
                                                             : buildCellNeighbourGraph(owner.mesh()))),
+      cyclic(cyclicCouplingOf(owner, owner.caseDirectory_, twoD.get(), options)),
+      interfaceFactors(interfaceEdgeFactors(cyclic, *graph)),
+      boundaryFile((owner.caseDirectory_ / "constant" / "polyMesh" / "boundary").string()),
       stiffening(options, owner.mesh(), owner.points0(), twoD.get(), *graph, referencePoints, dimension),
       inverted(owner.mesh(), owner.points0(), twoD.get()),
       untangler(owner.mesh(), twoD.get())
@@ -161,6 +203,8 @@ void RigidBodyMotionSolver::Impl::updateProblem()
     std::vector<NodeConstraint>& classes = nodeClasses.constraints;
     std::vector<int>& prescriber = nodeClasses.prescribingPatch;
     const BoundaryDescription& conditions = owner.boundary();
+    std::vector<CoupledPair> pairs =
+        unifyCoupledClasses(cyclic, nodeClasses, dimension == 2, owner.mesh(), boundaryFile);
 
     bool changed = !problem;
     const std::vector<NodeConstraint>& constraints = problem ? problem->constraints() : classes;
@@ -172,6 +216,7 @@ void RigidBodyMotionSolver::Impl::updateProblem()
     if (!changed) return;
 
     prescribingPatch = std::move(prescriber);
+    coupledPairs = std::move(pairs);
     groups = groupPrescribedNodes(prescribingPatch, static_cast<int>(conditions.size()));
     pointIsPrescribed.assign(owner.mesh().points.size(), 0);
     for (const BoundaryPatchDescription& condition : conditions)
@@ -192,6 +237,7 @@ std::unique_ptr<RbmProblem> RigidBodyMotionSolver::Impl::problemAround(std::vect
     try {
         result = std::make_unique<RbmProblem>(dimension, std::move(points), graph, std::move(nodeConstraints),
                                               options.weighting);
+        if (!coupledPairs.empty()) result->setCoupledPairs(coupledPairs);
     } catch (const std::invalid_argument& error) {
         throw InputError(options.file, 0,
                          std::string("rigidBodyMotionSolver: the mesh and its boundary conditions do not define an RBM "
@@ -199,7 +245,15 @@ std::unique_ptr<RbmProblem> RigidBodyMotionSolver::Impl::problemAround(std::vect
                              error.what() +
                              " (every group of moving points needs a prescribed patch, e.g. fixedValue, holding it)");
     }
-    if (stiffening.factors()) result->setEdgeWeightFactors(stiffening.factors());
+    if (!interfaceFactors.empty()) {
+        // The interface's edges count once (CyclicCoupling.hpp), times any stiffening.
+        std::vector<double> factors = interfaceFactors;
+        if (stiffening.factors())
+            for (std::size_t e = 0; e < factors.size(); ++e) factors[e] *= (*stiffening.factors())[e];
+        result->setEdgeWeightFactors(factors);
+    } else if (stiffening.factors()) {
+        result->setEdgeWeightFactors(stiffening.factors());
+    }
     return result;
 }
 
@@ -235,6 +289,7 @@ void RigidBodyMotionSolver::Impl::prepareWritten(MotionSolveReport& report)
     if (curvedPatches.empty() || !hasState) return;
     projected = state.displacement;
     curvedPatches.project(referencePoints, projected);
+    problem->enforceCoupledPairs(projected);  // a cyclic point on a curved patch: its partner follows
     const Label before = inverted.count(state.displacement);
     useProjected = inverted.count(projected) <= before;
     if (useProjected) return;
@@ -526,6 +581,9 @@ MotionSolveReport RigidBodyMotionSolver::solve()
         impl.hasState = true;
         impl.statePrescribed = target;
         impl.untangleState(report);
+        // Untangling moves points one by one, without their cyclic partners: the partners
+        // follow (counted with the rest by the check below).
+        impl.problem->enforceCoupledPairs(impl.state.displacement);
     }
     impl.prepareWritten(report);
     impl.writeBack();

@@ -19,7 +19,18 @@
 #                   with the defaults to 1e-8; a misspelt entry in the block is a FATAL IO ERROR
 #                   naming it.
 #   interfacePatches the channel in two blocks joined by cyclicAMI patches: a FatalError naming
-#                   the patch and its type, nothing written.
+#                   the patch and its type, nothing written. OpenFOAM 13 (no cyclicAMI): the blocks
+#                   joined by a plain cyclic pair, which rbm supports: the run completes and the
+#                   pair's points move together to 1e-12.
+#   cyclicSector    a 60° annulus sector whose sides are a rotational cyclic pair, its inner arc
+#                   turning: moveDynamicMesh equals rbmMoveMesh to 1e-8, pairs u_B = R u_A to 1e-12.
+#   cyclicChannel   the oscillatingChannel with its sides a translational cyclic pair: 5 steps of
+#                   pimpleFoam equal rbmMoveMesh's to 1e-8 with the pairs together to 1e-12; the
+#                   same decomposed in two across the channel (each pair on one processor),
+#                   `mpirun -np 2 pimpleFoam -parallel`: equal to the serial run to 1e-8, pairs
+#                   to 1e-12. v1912 also: decomposed along the channel (processorCyclic
+#                   patches) a FatalError naming the remedy; with preservePatches equal to the
+#                   serial run to 1e-8.
 #   serial3D        tutorials/cube (3D, 30 linearized sub-steps) with moveDynamicMesh: the points
 #                   equal rbmMoveMesh's to 1e-9 (cells are about 0.1 wide).
 #   flowSteps       tests/data/openfoamPlugin/oscillatingChannel: 5 steps of pimpleFoam (slip
@@ -178,6 +189,38 @@ function(comparePoints a b tolerance)
     fail("points differ by more than ${tolerance}: ${out}${err}")
   endif()
 endfunction()
+
+# The cyclic pairs of the mesh in polyMeshDir moved to movedPoints: u_B = R u_A to tolerance.
+function(compareCyclicPairs polyMeshDir movedPoints tolerance)
+  execute_process(COMMAND ${RBM_COMPARE_POINTS} --cyclic ${polyMeshDir} ${movedPoints} ${tolerance}
+                  RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  message("${movedPoints}: ${out}${err}")
+  if(NOT status EQUAL 0)
+    fail("the cyclic pairs of ${movedPoints} are not together to ${tolerance}: ${out}${err}")
+  endif()
+endfunction()
+
+# Runs the flow solver on a decomposed case on 2 ranks; the optional second argument is the
+# expected exit (0 by default, FAIL for a run that must stop).
+macro(runFlowSolverOnTwoRanks case)
+  # Open MPI refuses root without --allow-run-as-root; 2 ranks on fewer cores need --oversubscribe.
+  execute_process(COMMAND id -u OUTPUT_VARIABLE uid OUTPUT_STRIP_TRAILING_WHITESPACE)
+  set(mpiOptions -np 2 --oversubscribe)
+  if(uid STREQUAL "0")
+    list(APPEND mpiOptions --allow-run-as-root)
+  endif()
+  # Open MPI started by its full path (/usr/bin/mpiexec) acts as --prefix /usr and puts /usr/lib
+  # first in the ranks' LD_LIBRARY_PATH, where Debian's OpenFOAM v1912 libraries would then
+  # shadow OpenFOAM 13's.
+  if(OPENFOAM STREQUAL "13")
+    list(APPEND mpiOptions --noprefix)
+  endif()
+  set(expectedExit 0)
+  if(${ARGC} GREATER 1)
+    set(expectedExit ${ARGV1})
+  endif()
+  runOpenFOAM(${case} ${expectedExit} pimpleFoam ${MPIEXEC} ${mpiOptions} -x WM_PROJECT_DIR ${flowSolver} -parallel)
+endmacro()
 
 function(setControl case keyword value)
   file(READ ${case}/system/controlDict text)
@@ -348,6 +391,12 @@ boundary
          "leftInterface { type ${interfaceType}; }\n    rightInterface { type ${interfaceType}; }\n    \\1" text "${text}")
   file(WRITE ${pluginCase}/0/pointDisplacement "${text}")
   runOpenFOAM(${pluginCase} 0 blockMesh blockMesh)
+  if(OPENFOAM STREQUAL "13")
+    # A plain cyclic: supported, its two sides (coincident here) moving together.
+    runOpenFOAM(${pluginCase} 0 moveDynamicMesh ${moveMesh})
+    compareCyclicPairs(${pluginCase}/constant/polyMesh ${pluginCase}/0.025/polyMesh/points 1e-12)
+    return()
+  endif()
   runOpenFOAM(${pluginCase} FAIL moveDynamicMesh ${moveMesh})
   expectContains("${moveDynamicMesh_out}" "FOAM FATAL ERROR" "moveDynamicMesh's output")
   expectContains("${moveDynamicMesh_out}" "patch leftInterface is of type ${interfaceType}" "moveDynamicMesh's output")
@@ -486,19 +535,7 @@ elseif(MODE STREQUAL "aliasName")
 elseif(MODE STREQUAL "parallel")
   prepareChannelWithReference()
   runOpenFOAM(${pluginCase} 0 decomposePar decomposePar)
-  # Open MPI refuses root without --allow-run-as-root; 2 ranks on fewer cores need --oversubscribe.
-  execute_process(COMMAND id -u OUTPUT_VARIABLE uid OUTPUT_STRIP_TRAILING_WHITESPACE)
-  set(mpiOptions -np 2 --oversubscribe)
-  if(uid STREQUAL "0")
-    list(APPEND mpiOptions --allow-run-as-root)
-  endif()
-  # Open MPI started by its full path (/usr/bin/mpiexec) acts as --prefix /usr and puts /usr/lib
-  # first in the ranks' LD_LIBRARY_PATH, where Debian's OpenFOAM v1912 libraries would then
-  # shadow OpenFOAM 13's.
-  if(OPENFOAM STREQUAL "13")
-    list(APPEND mpiOptions --noprefix)
-  endif()
-  runOpenFOAM(${pluginCase} 0 pimpleFoam ${MPIEXEC} ${mpiOptions} -x WM_PROJECT_DIR ${flowSolver} -parallel)
+  runFlowSolverOnTwoRanks(${pluginCase})
   expectContains("${pimpleFoam_out}" "gathered from the processors" "pimpleFoam's log")
   foreach(time 0.005 0.01 0.015 0.02 0.025)
     stepFigures("${pimpleFoam_out}" ${time} line)
@@ -507,6 +544,131 @@ elseif(MODE STREQUAL "parallel")
   expectContains("${pimpleFoam_out}" "\nEnd" "pimpleFoam's log")
   runOpenFOAM(${pluginCase} 0 reconstructPar reconstructPar -latestTime)
   comparePoints(${rbmCase}/0.025/polyMesh/points ${pluginCase}/0.025/polyMesh/points 1e-8)
+
+elseif(MODE STREQUAL "cyclicChannel")
+  # The oscillating channel with its slip sides replaced by a translational cyclic pair, left
+  # (x = 0) and right (x = 1): the channel is periodic in x.
+  set(source ${RBM_SOURCE_DIR}/tests/data/openfoamPlugin/oscillatingChannel)
+  prepareCase(${source} ${pluginCase})
+  file(READ ${pluginCase}/system/blockMeshDict text)
+  string(REPLACE "sides  { type wall; faces ((0 4 7 3) (1 2 6 5)); }"
+         "left  { type cyclic; neighbourPatch right; transform translational; separationVector (1 0 0); faces ((0 4 7 3)); }
+    right { type cyclic; neighbourPatch left; transform translational; separationVector (-1 0 0); faces ((1 2 6 5)); }"
+         text "${text}")
+  if(OPENFOAM STREQUAL "13")
+    # OpenFOAM 13's separation is the other way round (the neighbour's points to this patch's).
+    string(REPLACE "separationVector (1 0 0)" "separation (-1 0 0)" text "${text}")
+    string(REPLACE "separationVector (-1 0 0)" "separation (1 0 0)" text "${text}")
+    string(REPLACE "transform translational" "transformType translational" text "${text}")
+  endif()
+  file(WRITE ${pluginCase}/system/blockMeshDict "${text}")
+  foreach(field U p pointDisplacement)
+    file(READ ${pluginCase}/0/${field} text)
+    string(REPLACE "\"(bottom|sides)\"" "bottom { type zeroGradient; }\n    sides" text "${text}")
+    string(REGEX REPLACE "sides[ \t\n]*{[^}]*}" "left { type cyclic; }\n    right { type cyclic; }" text "${text}")
+    file(WRITE ${pluginCase}/0/${field} "${text}")
+  endforeach()
+  runOpenFOAM(${pluginCase} 0 blockMesh blockMesh)
+  set(parallelCase ${RBM_WORK_DIR}/parallelCase)
+  file(REMOVE_RECURSE ${rbmCase} ${parallelCase})
+  file(COPY ${pluginCase}/ DESTINATION ${rbmCase})
+  file(COPY ${pluginCase}/ DESTINATION ${parallelCase})
+  file(COPY ${source}/constant/dynamicMeshDict DESTINATION ${rbmCase}/constant)
+  runIn(${rbmCase} 0 rbmMoveMesh ${RBM_MOVE_MESH} -noVTK)
+  runOpenFOAM(${pluginCase} 0 pimpleFoam ${flowSolver})
+  expectContains("${pimpleFoam_out}" "\nEnd" "pimpleFoam's log")
+  comparePoints(${rbmCase}/0.025/polyMesh/points ${pluginCase}/0.025/polyMesh/points 1e-8)
+  compareCyclicPairs(${pluginCase}/constant/polyMesh ${pluginCase}/0.025/polyMesh/points 1e-12)
+  # Decomposed across the channel (bottom half, top half): each cyclic face pair on one
+  # processor, so no processorCyclic patch.
+  file(READ ${parallelCase}/system/decomposeParDict text)
+  string(REPLACE "(2 1 1)" "(1 2 1)" text "${text}")
+  file(WRITE ${parallelCase}/system/decomposeParDict "${text}")
+  runOpenFOAM(${parallelCase} 0 decomposePar decomposePar)
+  runFlowSolverOnTwoRanks(${parallelCase})
+  expectContains("${pimpleFoam_out}" "gathered from the processors" "pimpleFoam's log")
+  runOpenFOAM(${parallelCase} 0 reconstructPar reconstructPar -latestTime)
+  comparePoints(${pluginCase}/0.025/polyMesh/points ${parallelCase}/0.025/polyMesh/points 1e-8)
+  compareCyclicPairs(${parallelCase}/constant/polyMesh ${parallelCase}/0.025/polyMesh/points 1e-12)
+  if(OPENFOAM STREQUAL "1912")
+    # Decomposed along the channel, the interface is split between the processors
+    # (processorCyclic patches): refused, naming the patch and the remedy; with
+    # `preservePatches (left right);` the pairs stay on one processor and the run equals the
+    # serial one (its numbering differs, so to the solver's tolerance, not to the bit).
+    file(REMOVE_RECURSE ${parallelCase}/0.025)
+    file(GLOB processors ${parallelCase}/processor*)
+    file(REMOVE_RECURSE ${processors})
+    string(REPLACE "(1 2 1)" "(2 1 1)" text "${text}")
+    file(WRITE ${parallelCase}/system/decomposeParDict "${text}")
+    runOpenFOAM(${parallelCase} 0 decomposePar decomposePar)
+    runFlowSolverOnTwoRanks(${parallelCase} FAIL)
+    expectContains("${pimpleFoam_out}" "is a processorCyclic patch" "pimpleFoam's log")
+    expectContains("${pimpleFoam_out}" "preservePatches" "pimpleFoam's log")
+    file(GLOB processors ${parallelCase}/processor*)
+    file(REMOVE_RECURSE ${processors})
+    file(WRITE ${parallelCase}/system/decomposeParDict "${text}\npreservePatches (left right);\n")
+    runOpenFOAM(${parallelCase} 0 decomposePar decomposePar)
+    runFlowSolverOnTwoRanks(${parallelCase} 0)
+    runOpenFOAM(${parallelCase} 0 reconstructPar reconstructPar -latestTime)
+    comparePoints(${pluginCase}/0.025/polyMesh/points ${parallelCase}/0.025/polyMesh/points 1e-8)
+    compareCyclicPairs(${parallelCase}/constant/polyMesh ${parallelCase}/0.025/polyMesh/points 1e-12)
+  endif()
+
+elseif(MODE STREQUAL "cyclicSector")
+  # A 60° sector of the annulus 1 < r < 2 (one layer, 8 x 16 cells) whose sides are a
+  # rotational cyclic pair about z; the inner arc turns (angularOscillatingDisplacement, up to
+  # 0.2 rad), the outer one is fixed. moveDynamicMesh: equal to rbmMoveMesh, pairs u_B = R u_A.
+  set(source ${RBM_SOURCE_DIR}/tests/data/openfoamPlugin/oscillatingChannel)
+  prepareCase(${source} ${pluginCase})
+  file(READ ${pluginCase}/system/blockMeshDict text)
+  string(REGEX REPLACE "vertices.*$" "" text "${text}")
+  string(APPEND text [=[
+vertices
+(
+    (1 0 0) (2 0 0) (1 1.7320508075688772 0) (0.5 0.8660254037844386 0)
+    (1 0 0.1) (2 0 0.1) (1 1.7320508075688772 0.1) (0.5 0.8660254037844386 0.1)
+);
+blocks ( hex (0 1 2 3 4 5 6 7) (8 16 1) simpleGrading (1 1 1) );
+edges
+(
+    arc 1 2 (1.7320508075688772 1 0)     arc 5 6 (1.7320508075688772 1 0.1)
+    arc 0 3 (0.8660254037844386 0.5 0)   arc 4 7 (0.8660254037844386 0.5 0.1)
+);
+boundary
+(
+    sideA { type cyclic; neighbourPatch sideB; transform rotational; rotationAxis (0 0 1); rotationCentre (0 0 0); faces ((0 1 5 4)); }
+    sideB { type cyclic; neighbourPatch sideA; transform rotational; rotationAxis (0 0 1); rotationCentre (0 0 0); faces ((3 7 6 2)); }
+    inner { type wall; faces ((0 4 7 3)); }
+    outer { type wall; faces ((1 2 6 5)); }
+    frontAndBack { type empty; faces ((0 3 2 1) (4 5 6 7)); }
+);
+]=])
+  if(OPENFOAM STREQUAL "13")
+    string(REPLACE "transform rotational" "transformType rotational" text "${text}")
+  endif()
+  file(WRITE ${pluginCase}/system/blockMeshDict "${text}")
+  file(WRITE ${pluginCase}/0/pointDisplacement [=[
+FoamFile { version 2.0; format ascii; class pointVectorField; object pointDisplacement; }
+dimensions [0 1 0 0 0 0 0];
+internalField uniform (0 0 0);
+boundaryField
+{
+    sideA { type cyclic; }
+    sideB { type cyclic; }
+    inner { type angularOscillatingDisplacement; axis (0 0 1); origin (0 0 0); angle0 0; amplitude 0.2; omega 20; value uniform (0 0 0); }
+    outer { type fixedValue; value uniform (0 0 0); }
+    frontAndBack { type empty; }
+}
+]=])
+  file(REMOVE ${pluginCase}/0/U ${pluginCase}/0/p)
+  runOpenFOAM(${pluginCase} 0 blockMesh blockMesh)
+  file(REMOVE_RECURSE ${rbmCase})
+  file(COPY ${pluginCase}/ DESTINATION ${rbmCase})
+  file(COPY ${source}/constant/dynamicMeshDict DESTINATION ${rbmCase}/constant)
+  runIn(${rbmCase} 0 rbmMoveMesh ${RBM_MOVE_MESH} -noVTK)
+  runOpenFOAM(${pluginCase} 0 moveDynamicMesh ${moveMesh})
+  comparePoints(${rbmCase}/0.025/polyMesh/points ${pluginCase}/0.025/polyMesh/points 1e-8)
+  compareCyclicPairs(${pluginCase}/constant/polyMesh ${pluginCase}/0.025/polyMesh/points 1e-12)
 
 else()
   fail("unknown MODE ${MODE}")

@@ -440,9 +440,11 @@ def num(value, default=float("nan")):
 
 
 def coupled_patches(case):
+    """The patches rbm refuses: coupled or interface types other than plain cyclic."""
     try:
         return [p["name"] for p in read_boundary(os.path.join(case, "constant", "polyMesh", "boundary"))
-                if "cyclic" in p["type"] or "AMI" in p["type"] or p["type"].startswith("nonConformal")]
+                if p["type"] != "cyclic"
+                and ("cyclic" in p["type"] or "AMI" in p["type"] or p["type"].startswith("nonConformal"))]
     except (OSError, ValueError, AttributeError):
         return []
 

@@ -1265,3 +1265,124 @@ inline std::string errorOf(const std::function<void()>& action)
 }
 
 } // namespace rbm::test::solverCases
+
+// ---------------------------------------------------------------------------------------
+// Cyclic patches (CyclicPairsTest, CyclicCouplingTest): one-layer meshes whose opposite sides
+// are the two halves of a cyclic interface, built with extrudePolygons, and the partners of a
+// cyclic side's points found by brute force from the known transform.
+
+namespace rbm::test::cyclicCases {
+
+using namespace rbm::motion;
+
+inline Patch cyclicPatch(const std::string& name, const std::string& neighbour,
+                         std::vector<std::pair<std::string, std::string>> transformEntries)
+{
+    Patch patch{name, "cyclic", {}, 0, 0, {{"neighbourPatch", neighbour}}};
+    for (auto& entry : transformEntries) patch.otherEntries.push_back(std::move(entry));
+    return patch;
+}
+
+// A channel [0, length] × [0, height] of nx × ny square-ish quadrilaterals, one layer
+// (z in [0, 0.1]), with a rectangular body cut out of cells [bodyI0, bodyI1) × [bodyJ0, bodyJ1).
+// Patches: "inlet" (x = 0) and "outlet" (x = length), a translational cyclic pair; "walls"
+// (y = 0 and y = height); "body"; then the planes (`planeType`, "frontAndBack" or, with
+// separateFrontAndBack, "front" and "back").
+inline PolyMesh channelWithBody(double length, double height, int nx, int ny, int bodyI0, int bodyI1, int bodyJ0,
+                                int bodyJ1, const std::string& planeType = "empty", bool separateFrontAndBack = false)
+{
+    auto inBody = [&](int i, int j) { return i >= bodyI0 && i < bodyI1 && j >= bodyJ0 && j < bodyJ1; };
+    std::vector<Vector3> nodes;
+    std::vector<Label> index((nx + 1) * (ny + 1), -1);
+    for (int j = 0; j <= ny; ++j)
+        for (int i = 0; i <= nx; ++i) {
+            if (i > bodyI0 && i < bodyI1 && j > bodyJ0 && j < bodyJ1) continue;  // inside the body
+            index[i + (nx + 1) * j] = static_cast<Label>(nodes.size());
+            nodes.push_back({length * i / nx, height * j / ny, 0.0});
+        }
+    std::vector<std::vector<Label>> polygons;
+    for (int j = 0; j < ny; ++j)
+        for (int i = 0; i < nx; ++i) {
+            if (inBody(i, j)) continue;
+            auto at = [&](int a, int b) { return index[a + (nx + 1) * b]; };
+            polygons.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)});
+        }
+    auto side = [=](const Vector3& a, const Vector3& b) {
+        const Vector3 m = 0.5 * (a + b);
+        if (m.x == 0.0) return std::string("inlet");
+        if (m.x == length) return std::string("outlet");
+        if (m.y == 0.0 || m.y == height) return std::string("walls");
+        return std::string("body");
+    };
+    const std::string separation = "(" + std::to_string(length) + " 0 0)";
+    return solverCases::extrudePolygons(
+        nodes, polygons,
+        {cyclicPatch("inlet", "outlet", {{"transform", "translational"}, {"separationVector", separation}}),
+         cyclicPatch("outlet", "inlet", {{"transform", "translational"}, {"separationVector", "(-" + separation.substr(1)}}),
+         Patch{"walls", "wall", {}, 0, 0, {}}, Patch{"body", "wall", {}, 0, 0, {}}},
+        side, 0.0, 0.1, planeType, separateFrontAndBack);
+}
+
+// The sector r in [rInner, rOuter], θ in [0, sectorDegrees] of an annulus about the z axis,
+// nr × nθ cells, one layer (z in [0, 0.1]). Patches: "sideA" (θ = 0) and "sideB" (θ = sector),
+// a rotational cyclic pair about z through the origin, written as OpenFOAM 13 writes it
+// (transformType, no angle); "inner", "outer"; then the planes as in channelWithBody.
+inline PolyMesh annulusSector(double rInner, double rOuter, double sectorDegrees, int nr, int ntheta,
+                              const std::string& planeType = "empty", bool separateFrontAndBack = false)
+{
+    std::vector<Vector3> nodes;
+    for (int j = 0; j <= ntheta; ++j)
+        for (int i = 0; i <= nr; ++i) {
+            const double r = rInner + (rOuter - rInner) * i / nr;
+            const double theta = solverCases::degrees(sectorDegrees) * j / ntheta;
+            nodes.push_back({r * std::cos(theta), r * std::sin(theta), 0.0});
+        }
+    std::vector<std::vector<Label>> polygons;
+    for (int j = 0; j < ntheta; ++j)
+        for (int i = 0; i < nr; ++i) {
+            auto at = [&](int a, int b) { return static_cast<Label>(a + (nr + 1) * b); };
+            polygons.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)});
+        }
+    const double sector = solverCases::degrees(sectorDegrees);
+    auto side = [=](const Vector3& a, const Vector3& b) {
+        const Vector3 m = 0.5 * (a + b);
+        const double theta = std::atan2(m.y, m.x);
+        if (std::abs(theta) < 1e-9) return std::string("sideA");
+        if (std::abs(theta - sector) < 1e-9) return std::string("sideB");
+        return std::string(norm(m) < 0.5 * (rInner + rOuter) ? "inner" : "outer");
+    };
+    const std::vector<std::pair<std::string, std::string>> rotation{
+        {"transformType", "rotational"}, {"rotationAxis", "(0 0 1)"}, {"rotationCentre", "(0 0 0)"}};
+    return solverCases::extrudePolygons(nodes, polygons,
+                                        {cyclicPatch("sideA", "sideB", rotation), cyclicPatch("sideB", "sideA", rotation),
+                                         Patch{"inner", "wall", {}, 0, 0, {}}, Patch{"outer", "wall", {}, 0, 0, {}}},
+                                        side, 0.0, 0.1, planeType, separateFrontAndBack);
+}
+
+// For every point of patch `a`, the point of patch `b` nearest to image(x_a), by brute force.
+inline std::vector<std::pair<Label, Label>> partnersByGeometry(const PolyMesh& mesh, const std::string& a,
+                                                               const std::string& b,
+                                                               const std::function<Vector3(const Vector3&)>& image)
+{
+    const std::vector<Label> pointsA = patchMeshPoints(mesh, mesh.findPatch(a));
+    const std::vector<Label> pointsB = patchMeshPoints(mesh, mesh.findPatch(b));
+    std::vector<std::pair<Label, Label>> pairs;
+    for (Label pa : pointsA) {
+        const Vector3 target = image(mesh.points[pa]);
+        Label best = pointsB.front();
+        for (Label pb : pointsB)
+            if (norm(mesh.points[pb] - target) < norm(mesh.points[best] - target)) best = pb;
+        pairs.emplace_back(pa, best);
+    }
+    return pairs;
+}
+
+// The pointDisplacement field of a case: `boundaryField` is the text inside boundaryField { }.
+inline io::Dictionary pointDisplacementField(const std::string& boundaryField)
+{
+    return io::Dictionary::parseText("dimensions [0 1 0 0 0 0 0];\ninternalField uniform (0 0 0);\nboundaryField\n{\n" +
+                                         boundaryField + "\n}\n",
+                                     "0/pointDisplacement");
+}
+
+} // namespace rbm::test::cyclicCases

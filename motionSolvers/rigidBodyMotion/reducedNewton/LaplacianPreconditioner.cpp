@@ -154,6 +154,21 @@ LaplacianPreconditioner::~LaplacianPreconditioner() = default;
 
 bool LaplacianPreconditioner::apply(std::span<const double> r, std::span<double> z)
 {
+    if (!problem_.hasCoupledPairs()) return applyInverse(r, z);
+    // Cyclic pairs: Π K⁻¹ Π with Π the projection onto the pairs (and the sliding planes). K
+    // does not know the pairs (each side of an interface is a free boundary of K), but Π K⁻¹ Π
+    // is symmetric positive definite on the subspace the Newton iteration stays in, which is
+    // all that CG needs of a preconditioner.
+    const int dim = problem_.dimension();
+    pairProjected_.assign(r.begin(), r.end());
+    problem_.projectSliding(pairProjected_, dim);
+    if (!applyInverse(pairProjected_, z)) return false;
+    problem_.projectSliding(z, dim);
+    return true;
+}
+
+bool LaplacianPreconditioner::applyInverse(std::span<const double> r, std::span<double> z)
+{
     const int m = problem_.unknownNodeCount();
     const int dim = problem_.dimension();
     if (cholesky_) {

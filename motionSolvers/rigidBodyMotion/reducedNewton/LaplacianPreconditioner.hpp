@@ -47,7 +47,8 @@ public:
     LaplacianPreconditioner(const LaplacianPreconditioner&) = delete;
     LaplacianPreconditioner& operator=(const LaplacianPreconditioner&) = delete;
 
-    // z = P K⁻¹ P r; false if an iterative solve failed.
+    // z = P K⁻¹ P r (P: the problem's projection onto the sliding planes and the cyclic pairs);
+    // false if an iterative solve failed.
     bool apply(std::span<const double> r, std::span<double> z);
     // s = K⁻¹ b for one scalar right-hand side (one value per unknown node): K's factor, or CG
     // preconditioned by the 3D cycle to a loose tolerance. Only where hasScalarSolve(); false
@@ -75,8 +76,12 @@ private:
     // projections, to relativeTolerance. False if CG failed.
     bool projectedCycleSolve(std::span<const double> r, std::span<double> z, double relativeTolerance);
 
+    // apply without the projection onto the cyclic pairs.
+    bool applyInverse(std::span<const double> r, std::span<double> z);
+
     const RbmProblem& problem_;
     double relativeTolerance_;
+    std::vector<double> pairProjected_;  // apply's projected right-hand side (cyclic pairs)
     std::vector<double> laplacian_;  // scalar K in blockPattern() order
     std::unique_ptr<BlockSystemSolver> system_;
     bool vectorSystem_ = false;            // sliding nodes: K ⊗ I projected, one system

@@ -135,6 +135,8 @@ void WarmStart::keepTurnedStartIfLower(std::span<const Vector3> prescribedDispla
     const std::span<const Vector3> base =
         initialGuess ? std::span<const Vector3>(initialGuess->displacement) : std::span<const Vector3>{};
     if (turnedHarmonicStart(problem_, preconditioner_, prescribedDisplacement, trial_, base)) {
+        // The turned field does not know the cyclic pairs: their B nodes follow their A nodes.
+        problem_.enforceCoupledPairs(trial_);
         const double turnedEnergy = energy_.fitAndEnergy(trial_, trialRotations_);
         if (turnedEnergy < point.energy) {
             u.swap(trial_);

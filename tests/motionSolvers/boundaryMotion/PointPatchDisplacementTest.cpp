@@ -99,7 +99,7 @@ TEST(PointPatchDisplacement, UnknownTypeListsValidTypes)
     const PolyMesh mesh = twoFacePatchMesh();
     const std::string message = inputErrorOf([&] { condition("type movingWallDisplacement;", mesh, 0); });
     EXPECT_TRUE(contains(message, "Unknown patchField type movingWallDisplacement for patch bottom in file test.dict. "
-                                  "Valid patchField types are: angularOscillatingDisplacement calculated empty"))
+                                  "Valid patchField types are: angularOscillatingDisplacement calculated cyclic empty"))
         << message;
 }
 

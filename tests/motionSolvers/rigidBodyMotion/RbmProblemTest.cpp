@@ -11,6 +11,7 @@
 #include "RbmProblem.hpp"
 #include "ReducedNewtonSolver.hpp"
 #include "RigidMotionModes.hpp"
+#include "Rotation.hpp"
 #include "SubStepping.hpp"
 #include "TestCases.hpp"
 
@@ -434,6 +435,100 @@ TEST(LineNodes, ProjectionsAreTheProjectorOntoTheLine)
             EXPECT_NEAR(product, 0.0, 1e-12) << r;
         }
     }
+}
+
+namespace {
+
+// A 5 × 5 × 4 grid with its boundary prescribed and two interior nodes tied by a 30° turn about
+// z, node a sliding on the plane normal to `normalA` and b on its image (`normalB`).
+struct PairCase {
+    TestMesh mesh;
+    std::vector<NodeConstraint> constraints;
+    int a = -1, b = -1;
+    rbm::Matrix3 q = rbm::rotationMatrix({0.0, 0.0, 1.0}, 30.0 * std::numbers::pi / 180.0);
+};
+
+// q's rows, as CoupledPair holds them.
+std::array<Vector3, 3> rowsOf(const rbm::Matrix3& q)
+{
+    return {Vector3{q(0, 0), q(0, 1), q(0, 2)}, Vector3{q(1, 0), q(1, 1), q(1, 2)}, Vector3{q(2, 0), q(2, 1), q(2, 2)}};
+}
+
+PairCase pairCase()
+{
+    PairCase c;
+    c.mesh = structuredGrid(5, 5, 4, 1.0, {0.0, 0.0, 0.0});
+    c.constraints = prescribeBoundary(c.mesh);
+    for (std::size_t node = 0; node < c.mesh.points.size(); ++node) {
+        const auto [i, j, k] = c.mesh.gridIndex[node];
+        if (i == 1 && j == 1 && k == 1) c.a = static_cast<int>(node);
+        if (i == 3 && j == 2 && k == 2) c.b = static_cast<int>(node);
+    }
+    return c;
+}
+
+} // namespace
+
+TEST(CoupledPairs, ProjectionIsTheOrthogonalProjectorOntoThePairAndItsPlanes)
+{
+    PairCase c = pairCase();
+    const Vector3 normalA = Vector3{1.0, 2.0, 0.5} / std::sqrt(5.25);
+    c.constraints[c.a] = {NodeKind::sliding, normalA};
+    c.constraints[c.b] = {NodeKind::sliding, 3.0 * (c.q * normalA)};  // any length
+    RbmProblem problem(3, c.mesh.points, c.mesh.graph, c.constraints);
+    problem.setCoupledPairs({{c.a, c.b, rowsOf(c.q)}});
+    std::mt19937 random(7);
+    std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+    const std::size_t size = static_cast<std::size_t>(problem.unknownNodeCount()) * 3;
+    std::vector<double> x(size), y(size);
+    for (std::size_t k = 0; k < size; ++k) {
+        x[k] = uniform(random);
+        y[k] = uniform(random);
+    }
+    std::vector<double> px = x, py = y;
+    problem.projectSliding(px, 3);
+    problem.projectSliding(py, 3);
+    // Symmetric: x·Py = Px·y; idempotent: P(Px) = Px.
+    double xPy = 0.0, pxY = 0.0;
+    for (std::size_t k = 0; k < size; ++k) {
+        xPy += x[k] * py[k];
+        pxY += px[k] * y[k];
+    }
+    EXPECT_NEAR(xPy, pxY, 1e-13);
+    std::vector<double> twice = px;
+    problem.projectSliding(twice, 3);
+    for (std::size_t k = 0; k < size; ++k) EXPECT_NEAR(twice[k], px[k], 1e-15);
+    // In the subspace: u_b = q u_a, u_a on its plane; a free node untouched.
+    const int ia = problem.unknownIndex()[c.a], ib = problem.unknownIndex()[c.b];
+    const Vector3 ua{px[3 * ia], px[3 * ia + 1], px[3 * ia + 2]}, ub{px[3 * ib], px[3 * ib + 1], px[3 * ib + 2]};
+    EXPECT_LT(norm(ub - c.q * ua), 1e-15);
+    EXPECT_NEAR(dot(ua, normalA), 0.0, 1e-15);
+    EXPECT_GT(norm(ua), 0.1);
+    const int other = problem.unknownIndex()[c.a + 1];
+    for (int q = 0; q < 3; ++q) EXPECT_EQ(px[3 * other + q], x[3 * other + q]);
+    // The exact pair after rounding.
+    std::vector<Vector3> displacement(c.mesh.points.size(), Vector3{0.1, 0.2, 0.3});
+    problem.enforceCoupledPairs(displacement);
+    EXPECT_EQ(displacement[c.b], (c.q * Vector3{0.1, 0.2, 0.3}));
+}
+
+TEST(CoupledPairs, RejectsPairsTheProjectionCannotTake)
+{
+    PairCase c = pairCase();
+    c.constraints[c.a] = {NodeKind::sliding, {1.0, 0.0, 0.0}};
+    c.constraints[c.b] = {NodeKind::sliding, {1.0, 0.0, 0.0}};  // not the image of a's plane
+    RbmProblem problem(3, c.mesh.points, c.mesh.graph, c.constraints);
+    EXPECT_THROW(problem.setCoupledPairs({{c.a, c.b, rowsOf(c.q)}}), std::invalid_argument);
+    c.constraints[c.b] = {};
+    RbmProblem free(3, c.mesh.points, c.mesh.graph, c.constraints);
+    EXPECT_THROW(free.setCoupledPairs({{c.a, c.b, rowsOf(c.q)}}), std::invalid_argument);  // one plane against none
+    EXPECT_THROW(free.setCoupledPairs({{c.a, 0, rowsOf(c.q)}}), std::invalid_argument);    // node 0 is prescribed
+    rbm::Matrix3 stretched = c.q;
+    stretched.m[0][0] *= 1.1;
+    RbmProblem plain(3, c.mesh.points, c.mesh.graph, prescribeBoundary(c.mesh));
+    EXPECT_THROW(plain.setCoupledPairs({{c.a, c.b, rowsOf(stretched)}}), std::invalid_argument);
+    EXPECT_THROW(plain.setCoupledPairs({{c.a, c.b, rowsOf(c.q)}, {c.b, c.a + 1, rowsOf(c.q)}}), std::invalid_argument);  // b twice
+    EXPECT_NO_THROW(plain.setCoupledPairs({{c.a, c.b, rowsOf(c.q)}}));
 }
 
 TEST(RbmProblemInput, EdgeWeightFactorsScaleTheWeightsAndSurviveANewReference)
