@@ -112,10 +112,11 @@ std::vector<Label> automaticStiffeningPatches(const PolyMesh& mesh);
 // f_ij per directed edge of `graph` (same order as graph.neighbours), see the file comment.
 // 2D (dimension 2) uses the x and y of the points only. exponent 0 gives all ones; 1 and 2
 // are computed without std::pow (the same bits as the integer-exponent formulas).
-// The midpoints of a node's edges are searched together: the primitives that can be nearest
-// to any of them lie within d + 2ρ of the node (d: its distance to a primitive, ρ: the
+// In 2D the midpoints of a node's edges are searched together: the primitives that can be
+// nearest to any of them lie within d + 2ρ of the node (d: its distance to a primitive, ρ: the
 // farthest midpoint), found once; each midpoint's distance is the minimum over those, the
-// same number a search of the whole hierarchy gives (tested against brute force).
+// same number a search of the whole hierarchy gives (tested against brute force). In 3D each
+// midpoint is searched on its own (cheaper there; Stiffening.cpp has the figures).
 std::vector<double> stiffeningFactors(const CellNeighbourGraph& graph, std::span<const Vector3> points, int dimension,
                                       const NearestSurface& surface, double exponent);
 
