@@ -37,12 +37,12 @@ echo "| phase | share | CPU s |"
 echo "|---|---:|---:|"
 # Each sample goes to the innermost function of its call stack that names a phase (the
 # stack is printed leaf first), so the phases are disjoint and add up to the whole; a
-# V-cycle inside the warm start counts as a V-cycle.
+# V-cycle inside the warm start counts as a V-cycle, and the initial mesh's report is a
+# quality check like the moved mesh's.
 perf script -i "$data" -F ip,sym 2>/dev/null | awk -v f="$frequency" '
 BEGIN {
-    n = split("read|initial|setup|stiffening|problem|preconditioner|rnsetup|vcycle|hessian|cg|solve|inverted|quality|write|rest", order, "|")
+    n = split("read|setup|stiffening|problem|preconditioner|rnsetup|vcycle|hessian|cg|solve|inverted|quality|write|rest", order, "|")
     name["read"] = "read and topology check"
-    name["initial"] = "quality of the initial mesh"
     name["setup"] = "solver set-up: graph, node classes (without the stiffening)"
     name["stiffening"] = "stiffening distances and factors"
     name["problem"] = "problem (weights, pattern) for the step"
@@ -53,13 +53,12 @@ BEGIN {
     name["cg"] = "CG'"'"'s other work"
     name["solve"] = "solve, other (warm start, fits and energy of the line search, tests)"
     name["inverted"] = "inverted-cell check"
-    name["quality"] = "quality check of the moved mesh"
+    name["quality"] = "quality checks (the initial and the moved mesh)"
     name["write"] = "write"
     name["rest"] = "the rest (loading, MPI and PETSc start and end, boundary conditions)"
 }
 function phaseOf(symbol) {
     if (symbol ~ /^rbm::app::MoveMeshRun::readCheckedMesh/) return "read"
-    if (symbol ~ /^rbm::app::MoveMeshRun::reportInitialMesh/) return "initial"
     if (symbol ~ /^rbm::motion::EdgeStiffening::EdgeStiffening/) return "stiffening"
     if (symbol ~ /^rbm::motion::RigidBodyMotionSolver::RigidBodyMotionSolver/) return "setup"
     if (symbol ~ /^rbm::motion::RigidBodyMotionSolver::Impl::updateProblem/) return "problem"
