@@ -834,6 +834,44 @@ TEST(Stiffening, NearestSurfaceOfAClosedBoundaryMatchesABruteForceSearchToTheLas
     }
 }
 
+TEST(Stiffening, NearestSurfaceFinerThanSinglePrecisionMatchesABruteForceSearchToTheLastBit)
+{
+    // The hierarchy keeps its boxes in single precision, rounded outwards. Triangles a few
+    // float steps wide near (1, 1, 1) (a float step there is 1.2e-7) and points among them:
+    // a box rounded inwards, or to nearest, would miss primitives, and the distance would
+    // be larger than the brute force's. With one triangle the root is a leaf.
+    std::mt19937 random(23);
+    std::uniform_real_distribution<double> coordinate(1.0, 1.0 + 1e-6);
+    for (const int triangles : {1, 300}) {
+        NearestSurface surface;
+        for (int t = 0; t < triangles; ++t) {
+            const Vector3 a{coordinate(random), coordinate(random), coordinate(random)};
+            const Vector3 b = a + Vector3{coordinate(random) - 1.0, coordinate(random) - 1.0, 0.0} * 0.2;
+            const Vector3 c = a + Vector3{0.0, coordinate(random) - 1.0, coordinate(random) - 1.0} * 0.2;
+            surface.addTriangle(a, b, c);
+        }
+        surface.build();
+        int hint = -1;
+        int inside = 0;
+        for (int k = 0; k < 400; ++k) {
+            const Vector3 p{coordinate(random), coordinate(random), coordinate(random)};
+            double best = std::numeric_limits<double>::infinity();
+            for (int q = 0; q < static_cast<int>(surface.size()); ++q) best = std::min(best, surface.squaredDistanceTo(q, p));
+            EXPECT_EQ(surface.distance(p), std::sqrt(best)) << triangles << " triangles, " << p;
+            EXPECT_EQ(surface.distance(p, hint), std::sqrt(best)) << triangles << " triangles, " << p;
+            std::vector<int> found;
+            ASSERT_TRUE(surface.primitivesWithin(p, 2e-7, found, surface.size()));
+            std::size_t expected = 0;
+            for (int q = 0; q < static_cast<int>(surface.size()); ++q) expected += surface.squaredDistanceTo(q, p) <= 2e-7 * 2e-7;
+            EXPECT_EQ(found.size(), expected) << p;
+            inside += best < 1e-7 * 1e-7;
+        }
+        if (triangles > 1) {
+            EXPECT_GT(inside, 100);   // most points are among the triangles
+        }
+    }
+}
+
 TEST(Stiffening, PrimitivesWithinARadiusAreThoseABruteForceSearchFinds)
 {
     const PolyMesh mesh = makeHexBox(4, 3, 3, {0, 0, 0}, {4, 3, 3});
