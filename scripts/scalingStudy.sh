@@ -35,6 +35,7 @@ setScaling() {
 import re, sys
 path, value, reset = sys.argv[1], sys.argv[2], sys.argv[3]
 text = open(path).read()
+text = re.sub(r"\n[ \t]*scaling[ \t]+[^;\n]*;[^\n]*", "", text)  # the case's own, if any
 match = re.search(r"rigidBodyMotionSolverCoeffs\s*\{", text)
 if match is None:
     text += "\nrigidBodyMotionSolverCoeffs\n{\n    scaling %s;\n}\n" % value
@@ -87,7 +88,7 @@ EOF
 commit=$(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo unknown)
 if [[ -n $(git -C "$root" status --porcelain --untracked-files=no 2>/dev/null) ]]; then commit="$commit+changes"; fi
 cpu=$(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo | head -n 1)
-echo "Written by \`scripts/scalingStudy.sh\`: rbm $commit, $(date -u '+%Y-%m-%d %H:%M UTC'), $cpu ($(nproc) cores), OMP_NUM_THREADS=1."
+echo "Written by \`scripts/scalingStudy.sh\`: rbm $commit, $(date -u '+%Y-%m-%d %H:%M UTC'), $cpu ($(nproc --all) cores), OMP_NUM_THREADS=1."
 echo
 echo "| case | scaling rigid: steps, worst max non-orthogonality, most inverted cells in a step | scaling auto (0.3 in 2D, the default) | scaling similar |"
 echo "|---|---|---|---|"
