@@ -72,7 +72,7 @@ runCase() {
     summary=$(python3 - "$dir/log" "$status" <<'EOF'
 import re, sys
 log, status = open(sys.argv[1]).read(), sys.argv[2]
-steps = re.search(r"^End: (\d+) of (\d+) steps", log, re.M)
+steps = re.search(r"^End: (\d+) of (\d+) steps?", log, re.M)
 nonorth = re.search(r"max non-orthogonality\s+([0-9.]+)", log.split("End:")[-1]) if steps else None
 inverted = re.search(r"inverted cells\s+(\d+)", log.split("End:")[-1]) if steps else None
 print("%s of %s steps, %s°, %s inverted%s" % (steps.group(1) if steps else "?", steps.group(2) if steps else "?",
