@@ -260,10 +260,12 @@ TEST(ParallelMoveMesh, PitchingAirfoilStepsMatchTheSerialRunAndOnlyRankZeroWrite
             const std::vector<Vector3> parallel = io::readPolyMeshPoints(parallelCase / time / "polyMesh" / "points.gz");
             const std::vector<Vector3> initial = io::readPolyMeshPoints(serialCase / "constant" / "polyMesh" / "points.gz");
             ASSERT_EQ(serial.size(), parallel.size());
-            // Both at the gradient's rounding level from different starts: measured 1.4e-10
-            // (the stiffened far field, where the weighted gradient hardly sees a node), far
-            // below 1e-6 of the smallest cell (~1e-3).
-            EXPECT_LT(largestDifference(serial, parallel), 1e-9) << time;
+            // Both converged from different starts, each within displacementTolerance (1e-6 of
+            // a node's shortest edge, ~1e-3 here) of the minimum, so they may differ by twice
+            // that: measured 1.4e-10 with rigid neighbourhoods and 1.24e-9 with the 2D
+            // default's scaling (the stiffened far field, where the weighted gradient hardly
+            // sees a node).
+            EXPECT_LT(largestDifference(serial, parallel), 2e-9) << time;
             EXPECT_GT(largestDifference(serial, initial), 1e-3) << time;
         }
         // No stray output from the other rank: exactly the serial run's time folders.

@@ -409,7 +409,7 @@ TEST(RigidBodyMotionSolverAdvice, WithTheDefaultsASqueezeIsNamedAsSuch)
     // A wall pushed along a channel whose sides hold, to 0.1 of its length from the fixed end:
     // with the defaults in effect the advice (asked here of a valid step, as the front doors
     // would after an inverted one) names the squeeze, the cells at a tenth of their size, and
-    // no option.
+    // in 2D the one option that lets neighbourhoods shrink freely; with it in effect, none.
     const PolyMesh mesh = makeExtruded2D(10, 4, {0, 0, 0}, {10, 4, 1});
     const io::Dictionary field = parse(R"(
         boundaryField
@@ -423,9 +423,14 @@ TEST(RigidBodyMotionSolverAdvice, WithTheDefaultsASqueezeIsNamedAsSuch)
     auto solver = makeSolver(mesh, "", &field);
     ASSERT_TRUE(solver->solve().converged);
     const std::string advice = solver->invertedStepAdvice();
-    EXPECT_NE(advice.find("None of rbm's options will help: the motion squeezes cells to 0."), std::string::npos) << advice;
+    EXPECT_NE(advice.find("what can help this motion: scaling similar (the motion squeezes cells to 0."), std::string::npos)
+        << advice;
     EXPECT_EQ(advice.find("formulation"), std::string::npos) << advice;
-    EXPECT_NE(advice.find("Laplacian motion solver"), std::string::npos) << advice;
+    auto similar = makeSolver(mesh, "scaling similar;", &field);
+    ASSERT_TRUE(similar->solve().converged);
+    const std::string none = similar->invertedStepAdvice();
+    EXPECT_NE(none.find("None of rbm's options will help: the motion squeezes cells to 0."), std::string::npos) << none;
+    EXPECT_NE(none.find("Laplacian motion solver"), std::string::npos) << none;
 }
 
 TEST(RigidBodyMotionSolverBoundaries, DictionaryConditionsAreEvaluatedAtTheGivenTime)
