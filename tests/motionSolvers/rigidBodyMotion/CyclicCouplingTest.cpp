@@ -56,6 +56,14 @@ const char* const channelField = R"(
 // The 4 × 2 channel, 16 × 8 cells, with a 1 × 0.5 body at its centre.
 PolyMesh channel() { return channelWithBody(4.0, 2.0, 16, 8, 6, 10, 3, 5); }
 
+// The channel's body turned 10° about its centre and moved 0.15 downstream, 0.1 up; solved.
+MotionSolveReport moveChannelBody(MotionSolver& solver)
+{
+    const RigidMotion motion{{0.0, 0.0, 1.0}, degrees(10.0), {2.0, 1.0, 0.0}, {0.15, 0.1, 0.0}};
+    solver.setPatchDisplacement("body", patchDisplacement(solver, "body", [&](const Vector3& x) { return motion.displacement(x); }));
+    return solver.solve();
+}
+
 } // namespace
 
 TEST(CyclicCoupling, ABodyMovedInsideATranslationalChannelKeepsInletAndOutletTogether)
@@ -63,10 +71,7 @@ TEST(CyclicCoupling, ABodyMovedInsideATranslationalChannelKeepsInletAndOutletTog
     const PolyMesh mesh = channel();
     const io::Dictionary field = pointDisplacementField(channelField);
     auto solver = rbm::test::makeSolver(mesh, "", &field);
-    // The body turned 10° about its centre and moved 0.15 downstream, 0.1 up.
-    const RigidMotion motion{{0.0, 0.0, 1.0}, degrees(10.0), {2.0, 1.0, 0.0}, {0.15, 0.1, 0.0}};
-    solver->setPatchDisplacement("body", patchDisplacement(*solver, "body", [&](const Vector3& x) { return motion.displacement(x); }));
-    const MotionSolveReport report = solver->solve();
+    const MotionSolveReport report = moveChannelBody(*solver);
     ASSERT_TRUE(report.converged) << report.reason;
     EXPECT_EQ(report.invertedCellCount, 0);
     const auto pairs = partnersByGeometry(mesh, "inlet", "outlet", [](const Vector3& x) { return x + Vector3{4.0, 0.0, 0.0}; });
@@ -106,9 +111,7 @@ TEST(CyclicCoupling, SlipWallsMeetTheInterfaceAndItsCornersSlideAlikeOnBothSides
                       std::string("walls  { type fixedValue; value uniform (0 0 0); }").size(), "walls  { type slip; }");
     const io::Dictionary field = pointDisplacementField(slipField);
     auto solver = rbm::test::makeSolver(mesh, "", &field);
-    const RigidMotion motion{{0.0, 0.0, 1.0}, degrees(10.0), {2.0, 1.0, 0.0}, {0.15, 0.1, 0.0}};
-    solver->setPatchDisplacement("body", patchDisplacement(*solver, "body", [&](const Vector3& x) { return motion.displacement(x); }));
-    const MotionSolveReport report = solver->solve();
+    const MotionSolveReport report = moveChannelBody(*solver);
     ASSERT_TRUE(report.converged) << report.reason;
     EXPECT_EQ(report.invertedCellCount, 0);
     const auto pairs = partnersByGeometry(mesh, "inlet", "outlet", [](const Vector3& x) { return x + Vector3{4.0, 0.0, 0.0}; });
