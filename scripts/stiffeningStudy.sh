@@ -203,7 +203,7 @@ run_openfoam() { # case diffusivity
   echo "| $1 | OpenFOAM \`diffusivity $(diffusivity "$2" "$1")\` | $(measure "$dir") | $status |"
 }
 
-echo "Measured $(date -u '+%Y-%m-%d %H:%M UTC'), commit $(git -C "$here" rev-parse --short HEAD)$(git -C "$here" diff --quiet HEAD -- motionSolvers apps || echo ' + uncommitted changes'), $(uname -n), $(nproc) cores; pitching: $pitchingSteps steps"
+echo "Measured $(date -u '+%Y-%m-%d %H:%M UTC'), commit $(git -C "$here" rev-parse --short HEAD)$(git -C "$here" diff --quiet HEAD -- motionSolvers apps || echo ' + uncommitted changes'), $(uname -n), $(nproc --all) cores; pitching: $pitchingSteps steps"
 echo
 echo "| case | method | max non-orthogonality | max skewness | inverted cells | run |"
 echo "|---|---|---|---|---|---|"

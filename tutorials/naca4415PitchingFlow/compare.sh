@@ -167,7 +167,7 @@ cell() { # cell <motion> <key> [field]: a table cell, "not run" without the plug
 commit=$(git -C "$here" rev-parse --short HEAD 2>/dev/null || echo unknown)
 cpu=$(awk -F': ' '/model name/{print $2; exit}' /proc/cpuinfo)
 echo "Measured with \`tutorials/naca4415PitchingFlow/compare.sh${arguments:+ $arguments}\` at commit $commit;"
-echo "$(nproc) cores ($cpu), other jobs running alongside; OpenFOAM v1912 (Debian), serial runs;"
+echo "$(nproc --all) cores ($cpu), other jobs running alongside; OpenFOAM v1912 (Debian), serial runs;"
 echo "26 656 prisms (13 575 nodes per plane); pimpleFoam $steps steps, moveDynamicMesh $motionSteps steps. Runs started:"
 for m in "${motions[@]}" static; do sed 's/$/;/' "$work/$m/started"; done
 echo

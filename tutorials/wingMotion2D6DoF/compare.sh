@@ -154,7 +154,7 @@ commit=$(git -C "$here" rev-parse --short HEAD 2>/dev/null || echo unknown)
 cpu=$(awk -F': ' '/model name/{print $2; exit}' /proc/cpuinfo)
 end=${endTime:-$(awk '/^endTime/{sub(";","",$2); print $2}' "$here/system/controlDict")}
 echo "Measured with \`tutorials/wingMotion2D6DoF/compare.sh${arguments:+ $arguments}\` at commit $commit;"
-echo "$(nproc) cores ($cpu), shared with other jobs; OpenFOAM v1912 (Debian), serial runs;"
+echo "$(nproc --all) cores ($cpu), shared with other jobs; OpenFOAM v1912 (Debian), serial runs;"
 echo "12 556 cells (snappyHexMesh + extrudeMesh, OpenFOAM's wingMotion tutorial), t = 0 … $end. Runs started:"
 for r in "${runs[@]}"; do sed 's/$/;/' "$work/started.$r"; done
 cell() { if [[ $1 == rbm* && -z $plugin ]]; then echo "not run (plugin not built)"; else echo "${row[$1,$2]}" | cut -d'|' -f"${3:-1-}"; fi; }
