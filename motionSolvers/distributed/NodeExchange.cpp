@@ -77,3 +77,21 @@ void NodeExchange::addGhostsToOwners(std::span<double> values, int blockSize) co
 }
 
 } // namespace rbm::motion
+
+namespace rbm::motion {
+
+double NodeExchange::sum(double value) const
+{
+    double total = 0.0;
+    RBM_CHECK_PETSC(MPI_Allreduce(&value, &total, 1, MPI_DOUBLE, MPI_SUM, communicator_));
+    return total;
+}
+
+double NodeExchange::maximum(double value) const
+{
+    double largest = 0.0;
+    RBM_CHECK_PETSC(MPI_Allreduce(&value, &largest, 1, MPI_DOUBLE, MPI_MAX, communicator_));
+    return largest;
+}
+
+} // namespace rbm::motion

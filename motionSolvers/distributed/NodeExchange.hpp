@@ -34,6 +34,9 @@ public:
     void updateGhosts(std::span<double> values, int blockSize) const;
     // Adds the ghosts' values to their owners' (the ghosts' entries are left as they were).
     void addGhostsToOwners(std::span<double> values, int blockSize) const;
+    // The sum and the largest of one value per rank (collective).
+    double sum(double value) const;
+    double maximum(double value) const;
 
 private:
     PetscSF starForest(int blockSize) const;

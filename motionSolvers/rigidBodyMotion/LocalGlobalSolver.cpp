@@ -1,5 +1,6 @@
 #include "LocalGlobalSolver.hpp"
 
+#include "NodeExchange.hpp"
 #include "ThreadCount.hpp"
 
 #include <algorithm>
@@ -200,10 +201,12 @@ void fitNodeRotations(const RbmProblem& problem, std::span<const Vector3> displa
     const bool planar = problem.dimension() == 2;
     rotations.resize(problem.nodeCount(), Matrix3::identity());
     const std::vector<int>& nodes = problem.unknownNodes();
-    const int unknownNodeCount = problem.unknownNodeCount();
+    // A part fits its owned nodes (the ghosts' neighbourhoods are incomplete) and takes the
+    // ghosts' rotations from their owners.
+    const int fittedNodeCount = problem.ownedUnknownCount();
     // One independent fit per node (thesis' local step): threads write only their own nodes.
 #pragma omp parallel for schedule(static) if (worthThreading(graph.neighbours.size()))
-    for (int a = 0; a < unknownNodeCount; ++a) {
+    for (int a = 0; a < fittedNodeCount; ++a) {
         const int i = nodes[a];
         double crossSum = 0.0, dotSum = 0.0;
         Matrix3 covariance;  // Σ w e dᵀ
@@ -242,6 +245,8 @@ void fitNodeRotations(const RbmProblem& problem, std::span<const Vector3> displa
             rotations[i] = bestRotation(covariance);
         }
     }
+    if (const NodeExchange* exchange = problem.nodeExchange())
+        exchange->updateGhosts({&rotations.front().m[0][0], rotations.size() * 9}, 9);
 }
 
 Vector3 rotationParameters(int dimension, const Matrix3& rotation)

@@ -42,9 +42,23 @@ RbmProblem::RbmProblem(int dimension, std::vector<Vector3> referencePoints, Cell
                  std::move(constraints), weighting)
 {}
 
+RbmProblem::RbmProblem(int dimension, std::vector<Vector3> referencePoints,
+                       std::shared_ptr<const CellNeighbourGraph> graph, std::vector<NodeConstraint> constraints,
+                       EdgeWeighting weighting, ProblemPart part)
+    : dimension_(dimension), referencePoints_(std::move(referencePoints)), graph_(std::move(graph)),
+      constraints_(std::move(constraints)), weighting_(weighting), part_(std::move(part))
+{
+    if (!part_.exchange) throw std::invalid_argument("RBM problem: a part needs its node exchange");
+    if (part_.ownedNodeCount < 0 || part_.ownedNodeCount > static_cast<int>(referencePoints_.size()))
+        throw std::invalid_argument("RBM problem: owned node count " + std::to_string(part_.ownedNodeCount) +
+                                    " out of range");
+    build();
+}
+
 RbmProblem RbmProblem::withReferencePoints(std::vector<Vector3> referencePoints) const
 {
-    RbmProblem moved(dimension_, std::move(referencePoints), graph_, constraints_, weighting_);
+    RbmProblem moved = isPart() ? RbmProblem(dimension_, std::move(referencePoints), graph_, constraints_, weighting_, part_)
+                                : RbmProblem(dimension_, std::move(referencePoints), graph_, constraints_, weighting_);
     moved.coupledPairs_ = coupledPairs_;  // checked already
     if (edgeWeightFactors_) {
         moved.edgeWeightFactors_ = edgeWeightFactors_;  // checked already
@@ -112,7 +126,7 @@ void RbmProblem::build()
     computeSlidingNormals();
     numberUnknowns();
     computeEdgeWeights();
-    checkUnknownsHeld();
+    if (!isPart()) checkUnknownsHeld();
     buildBlockPattern();
     checkBlockPattern();
 }
@@ -174,10 +188,12 @@ void RbmProblem::numberUnknowns()
     const int n = nodeCount();
     unknownIndex_.assign(n, -1);
     unknownNodes_.clear();
+    ownedUnknownCount_ = 0;
     for (int node = 0; node < n; ++node) {
         if (constraints_[node].kind == NodeKind::prescribed) continue;
         unknownIndex_[node] = static_cast<int>(unknownNodes_.size());
         unknownNodes_.push_back(node);
+        if (node < ownedNodeCount()) ownedUnknownCount_ = static_cast<int>(unknownNodes_.size());
     }
 }
 

@@ -45,6 +45,17 @@
 
 namespace rbm::motion {
 
+class NodeExchange;
+
+// One rank's part of a distributed problem (docs/parallel.md, "Distributed data"): the nodes of
+// a MeshPart, its owned nodes first. The rank evaluates the terms, rotation fits and rows of
+// the owned nodes only; the ghosts are the owned nodes' neighbours that other ranks own, and
+// `exchange` brings their values. A serial problem has no part (it owns every node).
+struct ProblemPart {
+    int ownedNodeCount = 0;
+    std::shared_ptr<const NodeExchange> exchange;
+};
+
 enum class NodeKind : std::uint8_t {
     prescribed,  // displacement given (fixed = prescribed zero); only ever a neighbour, never a centre
     free,        // displacement and rotation unknown
@@ -108,6 +119,10 @@ public:
                std::vector<NodeConstraint> constraints, EdgeWeighting weighting = EdgeWeighting::inverseDistanceSquared);
     RbmProblem(int dimension, std::vector<Vector3> referencePoints, CellNeighbourGraph graph,
                std::vector<NodeConstraint> constraints, EdgeWeighting weighting = EdgeWeighting::inverseDistanceSquared);
+    // One rank's part (ProblemPart). Whether every group of unknown nodes is held by a prescribed
+    // node is a property of the whole problem, not of a part: it is not checked here.
+    RbmProblem(int dimension, std::vector<Vector3> referencePoints, std::shared_ptr<const CellNeighbourGraph> graph,
+               std::vector<NodeConstraint> constraints, EdgeWeighting weighting, ProblemPart part);
 
     // The same graph, node classes and weighting around other reference positions (the
     // next sub-step's mesh, thesis §2.6); weights are recomputed from the new positions.
@@ -120,6 +135,14 @@ public:
     int unknownNodeCount() const { return static_cast<int>(unknownNodes_.size()); }
     int unknownCount() const { return unknownNodeCount() * blockSize(); }
     EdgeWeighting weighting() const { return weighting_; }
+    // Distributed problems: the owned nodes (0 … ownedNodeCount() − 1) and their unknowns (the
+    // first ownedUnknownCount(): unknowns are numbered in node order); the node exchange (null
+    // for a serial problem, which owns everything).
+    bool isPart() const { return part_.exchange != nullptr; }
+    int ownedNodeCount() const { return isPart() ? part_.ownedNodeCount : nodeCount(); }
+    int ownedUnknownCount() const { return ownedUnknownCount_; }
+    const NodeExchange* nodeExchange() const { return part_.exchange.get(); }
+    const ProblemPart& part() const { return part_; }
 
     const std::vector<Vector3>& referencePoints() const { return referencePoints_; }
     const CellNeighbourGraph& graph() const { return *graph_; }
@@ -269,6 +292,8 @@ private:
     double meanEdgeLength_ = 0.0;
     int slidingNodeCount_ = 0;
     std::vector<CoupledPair> coupledPairs_;
+    ProblemPart part_;
+    int ownedUnknownCount_ = 0;
 };
 
 // Per-node state: displacements and rotations of ALL nodes (prescribed nodes hold their

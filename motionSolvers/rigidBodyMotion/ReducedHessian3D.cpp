@@ -1,5 +1,6 @@
 #include "ReducedHessian3D.hpp"
 
+#include "NodeExchange.hpp"
 #include "ThreadCount.hpp"
 #include "VectorInstructions.hpp"
 
@@ -85,7 +86,7 @@ void ReducedHessian3D::prepare(std::span<const Vector3> displacement, std::span<
     const std::vector<Vector3>& x = problem_.referencePoints();
     const std::vector<int>& nodes = problem_.unknownNodes();
     const std::vector<double>& weights = problem_.edgeWeights();
-    const int m = problem_.unknownNodeCount();
+    const int m = problem_.ownedUnknownCount();
 #pragma omp parallel for schedule(static) if (worthThreading(graph.neighbours.size()))
     for (int a = 0; a < m; ++a) {
         const int i = nodes[a];
@@ -219,17 +220,27 @@ void ReducedHessian3D::apply(std::span<const double> v, std::span<double> y)
         const std::size_t k = static_cast<std::size_t>(a) * 3;
         nodeVector_[nodes[a]].value = Double4{projected_[k], projected_[k + 1], projected_[k + 2], 0.0};
     }
+    const NodeExchange* exchange = problem_.nodeExchange();
+    const auto asDoubles = [](std::vector<AlignedDouble4>& values) {
+        return std::span<double>(reinterpret_cast<double*>(values.data()), values.size() * 4);
+    };
+    // A part: the ghosts' v from their owners before the first pass, their M after it; both
+    // passes cover the owned rows only.
+    if (exchange) exchange->updateGhosts(asDoubles(nodeVector_), 4);
+    const int owned = problem_.ownedUnknownCount();
     const PassData data{nodes.data(),       graph.offsets.data(), graph.neighbours.data(), problem_.edgeWeights().data(),
                         position_.data(),   nodeVector_.data(),   nodeMap_.data(),         rotation_.data(),
                         inverse_.data(),    rotatedSum_.data(),   ownTerm_.data(),         diagonal_.data(),
                         y.data()};
     const bool threads = worthThreading(graph.neighbours.size());
     const bool avx = useAvxKernels();
-    forEachThreadRange(m, threads, [&](int begin, int end) {
+    forEachThreadRange(owned, threads, [&](int begin, int end) {
         if (avx) firstPassAvx(data, begin, end);
         else firstPassBaseline(data, begin, end);
     });
-    forEachThreadRange(m, threads, [&](int begin, int end) {
+    if (exchange) exchange->updateGhosts(asDoubles(nodeMap_), 12);
+    std::fill(y.begin() + static_cast<std::ptrdiff_t>(owned) * 3, y.end(), 0.0);
+    forEachThreadRange(owned, threads, [&](int begin, int end) {
         if (avx) secondPassAvx(data, begin, end);
         else secondPassBaseline(data, begin, end);
     });

@@ -26,6 +26,9 @@
 // per edge term; what it gives the solve shows in rbmBenchmark's twist3D case.
 //
 // Determinism: every loop writes its own node's entries; each node's sums run in graph order.
+//
+// One rank's part (RbmProblem::isPart): the passes cover the owned nodes; the ghosts' v_j and
+// M_j come from their owners (one ghost update before each pass); ghost rows of S v are zero.
 
 #include "RbmEnergy.hpp"
 #include "RbmProblem.hpp"

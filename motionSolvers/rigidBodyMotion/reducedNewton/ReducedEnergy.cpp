@@ -1,6 +1,7 @@
 #include "ReducedEnergy.hpp"
 
 #include "LocalGlobalSolver.hpp"
+#include "NodeExchange.hpp"
 #include "PlanarReducedKernels.hpp"
 #include "ReducedHessian3D.hpp"
 #include "ThreadCount.hpp"
@@ -17,6 +18,8 @@ ReducedEnergy::ReducedEnergy(const RbmProblem& problem, NeighbourhoodScaling sca
     if (dim != 2 && !scaling.rigid())
         throw std::invalid_argument("neighbourhoods that scale (scaling) are implemented for planar (2D and "
                                     "pseudo-2D) cases only; this case is 3D");
+    if (dim == 2 && problem.isPart())
+        throw std::invalid_argument("the distributed reduced energy is implemented for 3D problems only");
     const CellNeighbourGraph& graph = problem.graph();
     weightSums_.assign(problem.unknownNodeCount(), 0.0);
     weightedLengths_.assign(problem.unknownNodeCount(), 0.0);
@@ -36,6 +39,12 @@ ReducedEnergy::ReducedEnergy(const RbmProblem& problem, NeighbourhoodScaling sca
 
 ReducedEnergy::~ReducedEnergy() = default;
 
+double ReducedEnergy::sumOverRanks(double value) const
+{
+    const NodeExchange* exchange = problem_.nodeExchange();
+    return exchange ? exchange->sum(value) : value;
+}
+
 double ReducedEnergy::fitAndEnergy(std::span<const Vector3> displacement, std::vector<Matrix3>& rotations) const
 {
     if (planar_) return planar_->fitAndEnergy(displacement, rotations);
@@ -43,7 +52,7 @@ double ReducedEnergy::fitAndEnergy(std::span<const Vector3> displacement, std::v
     const CellNeighbourGraph& graph = problem_.graph();
     const std::vector<Vector3>& x = problem_.referencePoints();
     const std::vector<int>& nodes = problem_.unknownNodes();
-    const int m = problem_.unknownNodeCount();
+    const int m = problem_.ownedUnknownCount();  // a part sums its owned nodes' terms
     const bool planar = problem_.dimension() == 2;
     std::vector<double> nodeEnergy(static_cast<std::size_t>(m));
 #pragma omp parallel for schedule(static) if (worthThreading(graph.neighbours.size()))
@@ -61,7 +70,7 @@ double ReducedEnergy::fitAndEnergy(std::span<const Vector3> displacement, std::v
     }
     double sum = 0.0;
     for (double value : nodeEnergy) sum += value;
-    return 0.5 * sum;
+    return 0.5 * sumOverRanks(sum);
 }
 
 void ReducedEnergy::gradient(std::span<const Vector3> displacement, std::span<const Matrix3> rotations,
@@ -75,9 +84,10 @@ void ReducedEnergy::gradient(std::span<const Vector3> displacement, std::span<co
     const CellNeighbourGraph& graph = problem_.graph();
     const std::vector<Vector3>& x = problem_.referencePoints();
     const std::vector<int>& nodes = problem_.unknownNodes();
-    const int m = problem_.unknownNodeCount();
+    const int m = problem_.ownedUnknownCount();  // a part's ghost rows are their owners'
     const int dim = problem_.dimension();
     const bool planar = dim == 2;
+    std::fill(g.begin() + static_cast<std::ptrdiff_t>(m) * dim, g.end(), 0.0);
 #pragma omp parallel for schedule(static) if (worthThreading(graph.neighbours.size()))
     for (int a = 0; a < m; ++a) {
         const int k = nodes[a];
@@ -123,7 +133,7 @@ void ReducedEnergy::applyHessian(std::span<const double> v, std::span<double> y)
 double ReducedEnergy::gradientRoundoffNorm(std::span<const Vector3> displacement)
 {
     const int n = problem_.nodeCount();
-    const int m = problem_.unknownNodeCount();
+    const int m = problem_.ownedUnknownCount();
     const int dim = problem_.dimension();
     const std::vector<int>& nodes = problem_.unknownNodes();
     const CellNeighbourGraph& graph = problem_.graph();
@@ -141,7 +151,7 @@ double ReducedEnergy::gradientRoundoffNorm(std::span<const Vector3> displacement
     }
     double sum = 0.0;
     for (double magnitude : magnitudes_) sum += dim * magnitude * magnitude;
-    return std::numeric_limits<double>::epsilon() * std::sqrt(sum);
+    return std::numeric_limits<double>::epsilon() * std::sqrt(sumOverRanks(sum));
 }
 
 } // namespace rbm::motion

@@ -29,6 +29,11 @@
 // only, nothing stored per edge). Vectors of unknowns are compact: dimension() entries per
 // unknown node, projected onto the sliding planes (P). Every loop over nodes writes its own
 // node's entries and every sum runs in node order: bit-identical for any thread count.
+//
+// One rank's part of a distributed problem (RbmProblem::isPart, 3D): every evaluation covers
+// the owned nodes (their terms, fits and rows; the ghosts' rotations come from their owners,
+// the ghost rows of g and S v are zero) and the energy and the rounding level are summed over
+// the ranks. Equal to the whole problem's to rounding (the sums run in another order).
 
 #include "NeighbourhoodScaling.hpp"
 #include "RbmEnergy.hpp"
@@ -65,6 +70,9 @@ public:
     double gradientRoundoffNorm(std::span<const Vector3> displacement);
 
 private:
+    // A part's sum over all ranks (the value itself in a serial problem).
+    double sumOverRanks(double value) const;
+
     const RbmProblem& problem_;
     std::unique_ptr<PlanarReducedKernels> planar_;  // 2D
     std::unique_ptr<ReducedHessian3D> hessian3D_;   // 3D: S from per-node data

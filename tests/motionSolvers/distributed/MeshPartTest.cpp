@@ -10,109 +10,26 @@
 
 #include "PetscTestEnvironment.hpp"
 
-#include "CellNeighbourGraph.hpp"
-#include "MeshGenerators.hpp"
+#include "DecomposedBox.hpp"
 #include "MeshPart.hpp"
-#include "MeshTopology.hpp"
 #include "NodeExchange.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
-#include <set>
 #include <vector>
 
 namespace {
 
 using namespace rbm;
 using namespace rbm::motion;
+using rbm::test::DecomposedBox;
+using rbm::test::worldRank;
+using rbm::test::worldSize;
+using Whole = DecomposedBox;
 
 constexpr Label nx = 6, ny = 5, nz = 4;
-
-int worldRank()
-{
-    int rank = 0;
-    MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
-    return rank;
-}
-
-int worldSize()
-{
-    int size = 1;
-    MPI_Comm_size(PETSC_COMM_WORLD, &size);
-    return size;
-}
-
-// The box with its points moved off the lattice (so coordinates identify points).
-PolyMesh wholeMesh()
-{
-    PolyMesh mesh = makeHexBox(nx, ny, nz, {0.0, 0.0, 0.0}, {1.2, 1.0, 0.8});
-    for (Vector3& x : mesh.points) x = x + 0.01 * Vector3{std::sin(7 * x.y), std::cos(5 * x.z), std::sin(3 * x.x)};
-    return mesh;
-}
-
-using Decomposition = std::function<int(Label i, Label j, Label k, int ranks)>;
-
-int blocks(Label i, Label j, Label k, int ranks)
-{
-    if (ranks == 1) return 0;
-    if (ranks == 2) return i + j < (nx + ny) / 2 ? 0 : 1;  // a staircase
-    if (ranks == 3) return i < 2 ? 0 : (j < 3 ? 1 : 2);
-    return (i < nx / 2 ? 0 : 1) + (j < ny / 2 ? 0 : 2) + 0 * k;  // quadrants: 4 ranks around an edge
-}
-
-int scattered(Label i, Label j, Label k, int ranks) { return static_cast<int>((7 * i + 3 * j + 5 * k) % ranks); }
-
-struct Whole {
-    PolyMesh mesh = wholeMesh();
-    MeshTopology topology = buildMeshTopology(mesh);
-    CellNeighbourGraph graph = buildCellNeighbourGraph(topology);
-    std::vector<int> cellRanks;
-    // Per point: the ranks with a cell around it.
-    std::vector<std::set<int>> holders;
-
-    explicit Whole(const Decomposition& decomposition)
-    {
-        const int ranks = worldSize();
-        for (Label c = 0; c < topology.cellCount; ++c)
-            cellRanks.push_back(decomposition(c % nx, (c / nx) % ny, c / (nx * ny), ranks));
-        holders.resize(mesh.points.size());
-        for (Label c = 0; c < topology.cellCount; ++c)
-            for (Label p : topology.pointsOf(c)) holders[p].insert(cellRanks[c]);
-    }
-
-    // This rank's cells, its points in a scrambled local order (the part must not depend on it).
-    LocalCells localCells(int rank) const
-    {
-        std::vector<Label> globalOfLocal;
-        for (Label p = 0; p < mesh.pointCount(); ++p)
-            if (holders[p].count(rank)) globalOfLocal.push_back(p);
-        std::sort(globalOfLocal.begin(), globalOfLocal.end(),
-                  [](Label a, Label b) { return (a * 7919) % 1009 < (b * 7919) % 1009 || ((a * 7919) % 1009 == (b * 7919) % 1009 && a < b); });
-        std::vector<Label> localOfGlobal(mesh.points.size(), -1);
-        LocalCells cells;
-        for (Label g : globalOfLocal) {
-            localOfGlobal[g] = cells.pointCount();
-            cells.points.push_back(mesh.points[g]);
-            cells.globalIds.push_back(g);
-        }
-        for (Label c = 0; c < topology.cellCount; ++c) {
-            if (cellRanks[c] != rank) continue;
-            for (Label p : topology.pointsOf(c)) cells.cellPoints.push_back(localOfGlobal[p]);
-            cells.cellOffsets.push_back(static_cast<Label>(cells.cellPoints.size()));
-        }
-        // Processor boundary: the points of internal faces between cells of different ranks.
-        cells.onProcessorBoundary.assign(cells.points.size(), 0);
-        for (Label f = 0; f < mesh.internalFaceCount(); ++f) {
-            if (cellRanks[mesh.owner[f]] == cellRanks[mesh.neighbour[f]]) continue;
-            if (cellRanks[mesh.owner[f]] != rank && cellRanks[mesh.neighbour[f]] != rank) continue;
-            for (Label p : mesh.face(f)) cells.onProcessorBoundary[localOfGlobal[p]] = 1;
-        }
-        return cells;
-    }
-};
 
 // Per global point, the sum over ranks of `perRank` (one value per global point on each rank).
 std::vector<int> sumOverRanks(std::vector<int> perRank)
@@ -193,23 +110,23 @@ void checkExchange(const MeshPart& part)
     EXPECT_THROW(exchange.updateGhosts(std::span<double>(values).first(3), 3), std::invalid_argument);
 }
 
-void checkDecomposition(const Decomposition& decomposition)
+void checkDecomposition(const rbm::test::BoxDecomposition& decomposition)
 {
-    const Whole whole(decomposition);
+    const Whole whole(nx, ny, nz, decomposition);
     const MeshPart part(PETSC_COMM_WORLD, whole.localCells(worldRank()));
     checkOwnershipAndRows(whole, part);
     checkNeighbourhoods(whole, part);
     checkExchange(part);
 }
 
-TEST(MeshPart, BlocksMatchTheWholeMesh) { checkDecomposition(blocks); }
+TEST(MeshPart, BlocksMatchTheWholeMesh) { checkDecomposition(rbm::test::blockDecomposition(nx, ny)); }
 
-TEST(MeshPart, ScatteredCellsMatchTheWholeMesh) { checkDecomposition(scattered); }
+TEST(MeshPart, ScatteredCellsMatchTheWholeMesh) { checkDecomposition(rbm::test::scatteredDecomposition); }
 
 TEST(MeshPart, PointsSharedByFourRanksAroundAnEdgeHaveTheLowestOwner)
 {
     if (worldSize() != 4) GTEST_SKIP() << "needs 4 ranks";
-    const Whole whole(blocks);
+    const Whole whole(nx, ny, nz, rbm::test::blockDecomposition(nx, ny));
     const MeshPart part(PETSC_COMM_WORLD, whole.localCells(worldRank()));
     // The vertical line x = nx/2, y = ny/2 is held by all four quadrants and owned by rank 0.
     Label sharedByFour = 0;

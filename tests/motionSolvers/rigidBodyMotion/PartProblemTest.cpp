@@ -1,0 +1,143 @@
+// The RBM problem of one rank's part (PartProblem) and the reduced energy evaluated on it
+// (ReducedEnergy, ReducedHessian3D, fitNodeRotations on a part) against the whole problem:
+// CTest runs this program under mpiexec with 1 to 4 ranks. The box's bottom is fixed, its
+// top turned, its x-min side slides; the displacements of the other nodes are a smooth
+// field. Each rank's energy summed over the ranks, and its owned rows of the gradient and of
+// the reduced Hessian's product, must equal the whole problem's to rounding; the ghosts'
+// entries of the product's input are NaN, so a ghost value that is not fetched from its owner
+// shows.
+
+#include "PetscTestEnvironment.hpp"
+
+#include "DecomposedBox.hpp"
+#include "MeshPart.hpp"
+#include "PartProblem.hpp"
+#include "ReducedEnergy.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace {
+
+using namespace rbm;
+using namespace rbm::motion;
+using rbm::test::DecomposedBox;
+
+constexpr Label nx = 6, ny = 5, nz = 4;
+
+// Bottom (zMin) fixed and top (zMax) prescribed; x-min slides on x = const; the rest free.
+std::vector<NodeConstraint> constraintsOf(const DecomposedBox& box)
+{
+    std::vector<NodeConstraint> constraints(box.mesh.points.size());
+    for (Label p : patchMeshPoints(box.mesh, box.mesh.findPatch("xMin")))
+        constraints[p] = {NodeKind::sliding, Vector3{1.0, 0.0, 0.0}};
+    for (const char* name : {"zMin", "zMax"})
+        for (Label p : patchMeshPoints(box.mesh, box.mesh.findPatch(name))) constraints[p] = {NodeKind::prescribed};
+    return constraints;
+}
+
+// The top turned 25° about the vertical axis through the box's centre, faded down the height,
+// with a ripple: a state far from the rest state, so the rotation fits matter.
+Vector3 displacementAt(const Vector3& x)
+{
+    const double angle = 25.0 * M_PI / 180.0 * x.z / 0.8;
+    const double dx = x.x - 0.6, dy = x.y - 0.5;
+    return {std::cos(angle) * dx - std::sin(angle) * dy - dx + 0.02 * std::sin(5 * x.y),
+            std::sin(angle) * dx + std::cos(angle) * dy - dy, 0.03 * std::sin(4 * x.x) * x.z};
+}
+
+Vector3 directionAt(const Vector3& x) { return {std::cos(3 * x.y + x.z), x.x * x.z, std::sin(2 * x.x) - x.y}; }
+
+struct Evaluation {
+    double energy = 0.0;
+    double roundingLevel = 0.0;
+    std::vector<double> gradient, product;  // 3 per unknown node
+};
+
+// E, P∇Ẽ, P S P v and the rounding level on `problem` at the displacements of displacementAt;
+// v = directionAt at the unknown nodes, NaN at the ghosts'.
+Evaluation evaluate(const RbmProblem& problem)
+{
+    ReducedEnergy energy(problem);
+    std::vector<Vector3> u;
+    for (const Vector3& x : problem.referencePoints()) u.push_back(displacementAt(x));
+    std::vector<Matrix3> rotations;
+    Evaluation result;
+    result.energy = energy.fitAndEnergy(u, rotations);
+    result.gradient.assign(3 * static_cast<std::size_t>(problem.unknownNodeCount()), 0.0);
+    energy.gradient(u, rotations, result.gradient);
+    energy.prepareHessian(u, rotations);
+    std::vector<double> v(result.gradient.size(), std::numeric_limits<double>::quiet_NaN());
+    for (int a = 0; a < problem.ownedUnknownCount(); ++a) {
+        const Vector3 d = directionAt(problem.referencePoints()[problem.unknownNodes()[a]]);
+        for (int q = 0; q < 3; ++q) v[3 * a + q] = d[q];
+    }
+    result.product.assign(v.size(), 0.0);
+    energy.applyHessian(v, result.product);
+    result.roundingLevel = energy.gradientRoundoffNorm(u);
+    return result;
+}
+
+double largestMagnitude(const std::vector<double>& values)
+{
+    double largest = 0.0;
+    for (double value : values) largest = std::max(largest, std::abs(value));
+    return largest;
+}
+
+void checkPartAgainstWhole(const rbm::test::BoxDecomposition& decomposition)
+{
+    const DecomposedBox box(nx, ny, nz, decomposition);
+    const std::vector<NodeConstraint> wholeConstraints = constraintsOf(box);
+    const RbmProblem whole(3, box.mesh.points, box.graph, wholeConstraints);
+    const Evaluation expected = evaluate(whole);
+
+    const MeshPart part(PETSC_COMM_WORLD, box.localCells(rbm::test::worldRank()));
+    std::vector<NodeConstraint> constraints;
+    for (Label g : part.nodeGlobalIds()) constraints.push_back(wholeConstraints[g]);
+    const RbmProblem problem = partProblem(3, part, constraints);
+    ASSERT_TRUE(problem.isPart());
+    ASSERT_EQ(problem.ownedNodeCount(), part.ownedNodeCount());
+    const Evaluation evaluated = evaluate(problem);
+
+    EXPECT_NEAR(evaluated.energy, expected.energy, 1e-13 * expected.energy);
+    EXPECT_NEAR(evaluated.roundingLevel, expected.roundingLevel, 1e-12 * expected.roundingLevel);
+    const double gradientScale = largestMagnitude(expected.gradient);
+    const double productScale = largestMagnitude(expected.product);
+    ASSERT_GT(gradientScale, 0.0);
+    ASSERT_GT(productScale, 0.0);
+    for (int a = 0; a < problem.ownedUnknownCount(); ++a) {
+        const Label g = part.nodeGlobalIds()[problem.unknownNodes()[a]];
+        const int wholeRow = whole.unknownIndex()[g];
+        ASSERT_GE(wholeRow, 0);
+        for (int q = 0; q < 3; ++q) {
+            EXPECT_NEAR(evaluated.gradient[3 * a + q], expected.gradient[3 * wholeRow + q], 1e-13 * gradientScale)
+                << "global point " << g;
+            EXPECT_NEAR(evaluated.product[3 * a + q], expected.product[3 * wholeRow + q], 1e-13 * productScale)
+                << "global point " << g;
+        }
+    }
+    for (std::size_t k = 3 * static_cast<std::size_t>(problem.ownedUnknownCount()); k < evaluated.product.size(); ++k) {
+        EXPECT_EQ(evaluated.gradient[k], 0.0);
+        EXPECT_EQ(evaluated.product[k], 0.0);
+    }
+}
+
+TEST(PartProblem, BlocksEvaluateAsTheWholeProblem) { checkPartAgainstWhole(rbm::test::blockDecomposition(nx, ny)); }
+
+TEST(PartProblem, ScatteredCellsEvaluateAsTheWholeProblem)
+{
+    checkPartAgainstWhole(rbm::test::scatteredDecomposition);
+}
+
+TEST(PartProblem, ConstraintsMustCoverEveryNode)
+{
+    const DecomposedBox box(nx, ny, nz, rbm::test::blockDecomposition(nx, ny));
+    const MeshPart part(PETSC_COMM_WORLD, box.localCells(rbm::test::worldRank()));
+    EXPECT_THROW(partProblem(3, part, std::vector<NodeConstraint>(1)), std::invalid_argument);
+}
+
+} // namespace
