@@ -30,6 +30,8 @@ public:
     NodeExchange(const NodeExchange&) = delete;
     NodeExchange& operator=(const NodeExchange&) = delete;
 
+    MPI_Comm communicator() const { return communicator_; }
+
     // values: blockSize × part.nodeCount() entries. Collective.
     void updateGhosts(std::span<double> values, int blockSize) const;
     // Adds the ghosts' values to their owners' (the ghosts' entries are left as they were).

@@ -1,0 +1,98 @@
+// K⁻¹ on one rank's part (PartLaplacian) against the whole problem's factorised K⁻¹
+// (LaplacianPreconditioner, direct): CTest runs this program under mpiexec with 1 to 4 ranks.
+// The box's bottom and top are prescribed and its x-min side slides, so the solve is the
+// projected vector system; solved to a relative tolerance of 1e-10, every owned row must
+// equal the factorised solve's to 1e-8 of its largest entry.
+
+#include "PetscTestEnvironment.hpp"
+
+#include "DecomposedBox.hpp"
+#include "LaplacianPreconditioner.hpp"
+#include "MeshPart.hpp"
+#include "PartLaplacian.hpp"
+#include "PartProblem.hpp"
+#include "ReducedLinearizedOperator.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+namespace {
+
+using namespace rbm;
+using namespace rbm::motion;
+using rbm::test::DecomposedBox;
+
+constexpr Label nx = 7, ny = 6, nz = 5;
+
+std::vector<NodeConstraint> constraintsOf(const DecomposedBox& box)
+{
+    std::vector<NodeConstraint> constraints(box.mesh.points.size());
+    for (Label p : patchMeshPoints(box.mesh, box.mesh.findPatch("xMin")))
+        constraints[p] = {NodeKind::sliding, Vector3{1.0, 0.2, 0.0}};
+    for (const char* name : {"zMin", "zMax"})
+        for (Label p : patchMeshPoints(box.mesh, box.mesh.findPatch(name))) constraints[p] = {NodeKind::prescribed};
+    return constraints;
+}
+
+Vector3 rightHandSideAt(const Vector3& x) { return {std::sin(4 * x.x + x.y), x.z - 0.3, std::cos(3 * x.y) * x.x}; }
+
+std::vector<double> rightHandSide(const RbmProblem& problem)
+{
+    std::vector<double> r(3 * static_cast<std::size_t>(problem.unknownNodeCount()));
+    for (int a = 0; a < problem.unknownNodeCount(); ++a) {
+        const Vector3 value = rightHandSideAt(problem.referencePoints()[problem.unknownNodes()[a]]);
+        for (int q = 0; q < 3; ++q) r[3 * a + q] = value[q];
+    }
+    return r;
+}
+
+void checkPartAgainstWhole(const rbm::test::BoxDecomposition& decomposition)
+{
+    const DecomposedBox box(nx, ny, nz, decomposition);
+    const std::vector<NodeConstraint> wholeConstraints = constraintsOf(box);
+    const RbmProblem whole(3, box.mesh.points, box.graph, wholeConstraints);
+    LaplacianPreconditioner factorised(whole, LinearSolverKind::direct, 1e-12);
+    const std::vector<double> wholeRight = rightHandSide(whole);
+    std::vector<double> expected(wholeRight.size());
+    ASSERT_TRUE(factorised.apply(wholeRight, expected));
+
+    const MeshPart part(PETSC_COMM_WORLD, box.localCells(rbm::test::worldRank()));
+    std::vector<NodeConstraint> constraints;
+    for (Label g : part.nodeGlobalIds()) constraints.push_back(wholeConstraints[g]);
+    const RbmProblem problem = partProblem(3, part, constraints);
+    PartLaplacian laplacian(problem, coupledDisplacementLaplacian(problem), 1e-10);
+    const std::vector<double> right = rightHandSide(problem);
+    std::vector<double> solution(right.size(), 1.0);
+    ASSERT_TRUE(laplacian.apply(right, solution));
+    EXPECT_GT(laplacian.lastIterations(), 0);
+
+    double scale = 0.0;
+    for (double value : expected) scale = std::max(scale, std::abs(value));
+    ASSERT_GT(scale, 0.0);
+    for (int a = 0; a < problem.ownedUnknownCount(); ++a) {
+        const int wholeRow = whole.unknownIndex()[part.nodeGlobalIds()[problem.unknownNodes()[a]]];
+        for (int q = 0; q < 3; ++q)
+            EXPECT_NEAR(solution[3 * a + q], expected[3 * wholeRow + q], 1e-8 * scale)
+                << "global point " << part.nodeGlobalIds()[problem.unknownNodes()[a]];
+    }
+    for (std::size_t k = 3 * static_cast<std::size_t>(problem.ownedUnknownCount()); k < solution.size(); ++k)
+        EXPECT_EQ(solution[k], 0.0);
+}
+
+TEST(PartLaplacian, BlocksSolveAsTheWholeFactorisation) { checkPartAgainstWhole(rbm::test::blockDecomposition(nx, ny)); }
+
+TEST(PartLaplacian, ScatteredCellsSolveAsTheWholeFactorisation)
+{
+    checkPartAgainstWhole(rbm::test::scatteredDecomposition);
+}
+
+TEST(PartLaplacian, NeedsAPart)
+{
+    const DecomposedBox box(nx, ny, nz, rbm::test::blockDecomposition(nx, ny));
+    const RbmProblem whole(3, box.mesh.points, box.graph, constraintsOf(box));
+    EXPECT_THROW(PartLaplacian(whole, coupledDisplacementLaplacian(whole), 1e-8), std::invalid_argument);
+}
+
+} // namespace
