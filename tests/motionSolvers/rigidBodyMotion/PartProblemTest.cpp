@@ -9,6 +9,7 @@
 
 #include "PetscTestEnvironment.hpp"
 
+#include "BoxConstraints.hpp"
 #include "DecomposedBox.hpp"
 #include "MeshPart.hpp"
 #include "PartProblem.hpp"
@@ -28,16 +29,7 @@ using rbm::test::DecomposedBox;
 
 constexpr Label nx = 6, ny = 5, nz = 4;
 
-// Bottom (zMin) fixed and top (zMax) prescribed; x-min slides on x = const; the rest free.
-std::vector<NodeConstraint> constraintsOf(const DecomposedBox& box)
-{
-    std::vector<NodeConstraint> constraints(box.mesh.points.size());
-    for (Label p : patchMeshPoints(box.mesh, box.mesh.findPatch("xMin")))
-        constraints[p] = {NodeKind::sliding, Vector3{1.0, 0.0, 0.0}};
-    for (const char* name : {"zMin", "zMax"})
-        for (Label p : patchMeshPoints(box.mesh, box.mesh.findPatch(name))) constraints[p] = {NodeKind::prescribed};
-    return constraints;
-}
+std::vector<NodeConstraint> constraintsOf(const DecomposedBox& box) { return rbm::test::boxConstraints(box, Vector3{1.0, 0.0, 0.0}); }
 
 // The top turned 25° about the vertical axis through the box's centre, faded down the height,
 // with a ripple: a state far from the rest state, so the rotation fits matter.

@@ -6,6 +6,7 @@
 
 #include "PetscTestEnvironment.hpp"
 
+#include "BoxConstraints.hpp"
 #include "DecomposedBox.hpp"
 #include "LaplacianPreconditioner.hpp"
 #include "MeshPart.hpp"
@@ -26,15 +27,7 @@ using rbm::test::DecomposedBox;
 
 constexpr Label nx = 7, ny = 6, nz = 5;
 
-std::vector<NodeConstraint> constraintsOf(const DecomposedBox& box)
-{
-    std::vector<NodeConstraint> constraints(box.mesh.points.size());
-    for (Label p : patchMeshPoints(box.mesh, box.mesh.findPatch("xMin")))
-        constraints[p] = {NodeKind::sliding, Vector3{1.0, 0.2, 0.0}};
-    for (const char* name : {"zMin", "zMax"})
-        for (Label p : patchMeshPoints(box.mesh, box.mesh.findPatch(name))) constraints[p] = {NodeKind::prescribed};
-    return constraints;
-}
+std::vector<NodeConstraint> constraintsOf(const DecomposedBox& box) { return rbm::test::boxConstraints(box, Vector3{1.0, 0.2, 0.0}); }
 
 Vector3 rightHandSideAt(const Vector3& x) { return {std::sin(4 * x.x + x.y), x.z - 0.3, std::cos(3 * x.y) * x.x}; }
 
