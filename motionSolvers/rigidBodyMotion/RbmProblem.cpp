@@ -1,5 +1,8 @@
 #include "RbmProblem.hpp"
 
+#include "NodeExchange.hpp"
+#include "OrderedSums.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -53,6 +56,35 @@ RbmProblem::RbmProblem(int dimension, std::vector<Vector3> referencePoints,
         throw std::invalid_argument("RBM problem: owned node count " + std::to_string(part_.ownedNodeCount) +
                                     " out of range");
     build();
+}
+
+namespace {
+
+// The owned unknown nodes' entries of a compact vector of `unknownCount` nodes.
+std::span<const double> ownedEntries(std::span<const double> values, int unknownCount, int ownedCount)
+{
+    if (unknownCount == 0 || ownedCount == unknownCount) return values;
+    return values.first(values.size() / static_cast<std::size_t>(unknownCount) * static_cast<std::size_t>(ownedCount));
+}
+
+} // namespace
+
+double RbmProblem::compactDot(std::span<const double> a, std::span<const double> b) const
+{
+    const double local = dotProduct(ownedEntries(a, unknownNodeCount(), ownedUnknownCount_),
+                                    ownedEntries(b, unknownNodeCount(), ownedUnknownCount_));
+    return sumOverRanks(local);
+}
+
+double RbmProblem::compactNorm(std::span<const double> a) const { return std::sqrt(compactDot(a, a)); }
+
+double RbmProblem::sumOverRanks(double value) const { return isPart() ? part_.exchange->sum(value) : value; }
+
+double RbmProblem::maximumOverRanks(double value) const { return isPart() ? part_.exchange->maximum(value) : value; }
+
+void RbmProblem::updateGhostNodes(std::span<Vector3> nodeValues) const
+{
+    if (isPart()) part_.exchange->updateGhosts({&nodeValues.front().x, nodeValues.size() * 3}, 3);
 }
 
 RbmProblem RbmProblem::withReferencePoints(std::vector<Vector3> referencePoints) const

@@ -143,6 +143,15 @@ public:
     int ownedUnknownCount() const { return ownedUnknownCount_; }
     const NodeExchange* nodeExchange() const { return part_.exchange.get(); }
     const ProblemPart& part() const { return part_; }
+    // Reductions over the owned unknown nodes, summed (or maximised) over the ranks of a part;
+    // vectors are compact (the same number of entries per unknown node). In a serial problem
+    // these are OrderedSums' dotProduct and euclideanNorm and the value itself.
+    double compactDot(std::span<const double> a, std::span<const double> b) const;
+    double compactNorm(std::span<const double> a) const;
+    double sumOverRanks(double value) const;
+    double maximumOverRanks(double value) const;
+    // Ghost nodes ← their owners' values (a node array, 3 doubles per node); nothing when serial.
+    void updateGhostNodes(std::span<Vector3> nodeValues) const;
 
     const std::vector<Vector3>& referencePoints() const { return referencePoints_; }
     const CellNeighbourGraph& graph() const { return *graph_; }

@@ -18,15 +18,19 @@ namespace {
 double defaultAbsoluteTolerance(const RbmProblem& problem)
 {
     const CellNeighbourGraph& graph = problem.graph();
+    // A part: its owned nodes' edges, summed over the ranks.
     double sum = 0.0;
-    for (int i = 0; i < problem.nodeCount(); ++i)
+    for (int i = 0; i < problem.ownedNodeCount(); ++i)
         for (int e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e) {
             Vector3 d = problem.referencePoints()[graph.neighbours[e]] - problem.referencePoints()[i];
             if (problem.dimension() == 2) d.z = 0.0;
             sum += problem.edgeWeights()[e] * norm(d);
         }
-    const double meanWeightedLength = graph.edgeCount() > 0 ? sum / graph.edgeCount() : 1.0;
-    return 1e-11 * meanWeightedLength * std::sqrt(std::max(1, problem.unknownNodeCount()));
+    sum = problem.sumOverRanks(sum);
+    const double edges = problem.sumOverRanks(graph.offsets[problem.ownedNodeCount()]);
+    const double unknownNodes = problem.sumOverRanks(problem.ownedUnknownCount());
+    const double meanWeightedLength = edges > 0 ? sum / edges : 1.0;
+    return 1e-11 * meanWeightedLength * std::sqrt(std::max(1.0, unknownNodes));
 }
 
 } // namespace

@@ -31,6 +31,7 @@ void CompactUnknowns::set(std::vector<Vector3>& target, std::span<const double> 
             value[q] = offset_[static_cast<std::size_t>(a) * dim + q] + tangential[static_cast<std::size_t>(a) * dim + q];
         target[nodes[a]] = value;
     }
+    problem_.updateGhostNodes(target);  // a part: the ghosts' values are their owners'
 }
 
 void CompactUnknowns::moveAlong(const std::vector<Vector3>& from, std::span<const double> direction, double lambda,
@@ -48,6 +49,7 @@ void CompactUnknowns::moveAlong(const std::vector<Vector3>& from, std::span<cons
             value -= problem_.slidingNormalPart(nodes[a], value - c);
         }
     }
+    problem_.updateGhostNodes(trial);
 }
 
 } // namespace rbm::motion

@@ -1,6 +1,7 @@
 #include "LaplacianPreconditioner.hpp"
 
 #include "BlockRowLayout.hpp"
+#include "PartLaplacian.hpp"
 #include "ConjugateGradients.hpp"
 #include "ReducedLinearizedOperator.hpp"
 #include "SparseCholesky.hpp"
@@ -8,6 +9,7 @@
 #include "ThreeVectorMultigrid.hpp"
 
 #include <array>
+#include <stdexcept>
 #include <string>
 
 namespace rbm::motion {
@@ -41,6 +43,13 @@ LaplacianPreconditioner::LaplacianPreconditioner(const RbmProblem& problem, Line
     PetscBool innerSolve = PETSC_FALSE;
     RBM_CHECK_PETSC(PetscOptionsHasName(nullptr, "rbm_reduced_", "-inner_solve", &innerSolve));
     laplacian_ = coupledDisplacementLaplacian(problem_);
+    if (problem_.isPart()) {  // one rank's part of a distributed problem: PartLaplacian.hpp
+        if (problem_.hasCoupledPairs())
+            throw std::invalid_argument("cyclic patches are not supported in a distributed solve yet");
+        vectorSystem_ = true;
+        partLaplacian_ = std::make_unique<PartLaplacian>(problem_, laplacian_, relativeTolerance_);
+        return;
+    }
     vectorSystem_ = problem_.hasSlidingNodes();
     PetscMPIInt ranks = 1;
     RBM_CHECK_PETSC(MPI_Comm_size(solverCommunicator(), &ranks));
@@ -171,6 +180,7 @@ bool LaplacianPreconditioner::applyInverse(std::span<const double> r, std::span<
 {
     const int m = problem_.unknownNodeCount();
     const int dim = problem_.dimension();
+    if (partLaplacian_) return partLaplacian_->apply(r, z);
     if (cholesky_) {
         cholesky_->solve(r, z, dim);  // compact vectors are interleaved by node already
         return true;

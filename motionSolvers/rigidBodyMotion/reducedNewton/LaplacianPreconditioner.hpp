@@ -15,6 +15,8 @@
 //     the three components at once (ThreeVectorMultigrid.hpp, rbm's smoothed-aggregation
 //     hierarchy of K); with sliding nodes, CG on the projected K ⊗ I preconditioned by that
 //     cycle between projections, to the relative tolerance;
+//   - one rank's part of a distributed 3D problem (RbmProblem::isPart): PartLaplacian, CG +
+//     GAMG on the projected K ⊗ I assembled over the ranks, to the relative tolerance;
 //   - otherwise PETSc's KSP on K (per component) or on the projected K ⊗ I (sliding nodes).
 // The Newton CG is flexible (Polak–Ribière), so K⁻¹ needs not be an exact inverse.
 //
@@ -36,6 +38,7 @@
 
 namespace rbm::motion {
 
+class PartLaplacian;
 class SparseCholesky;
 class ThreeVectorMultigrid;
 
@@ -92,6 +95,7 @@ private:
     // 3D, one rank: that cycle on the three components at once, set up in the constructor
     // instead of system_ (ThreeVectorMultigrid.hpp).
     std::unique_ptr<ThreeVectorMultigrid> threeVectorCycle_;
+    std::unique_ptr<PartLaplacian> partLaplacian_;  // a part's K⁻¹
     Mat factor_ = nullptr;                 // the factor inside system_'s PC (not owned)
     PetscMat components_, solutions_;      // dense m × dimension right-hand sides and solutions
     std::unique_ptr<InheritedOptions> laplacianOptions_;  // rbm's defaults for K's solver in PETSc (CHOLMOD, BoomerAMG)

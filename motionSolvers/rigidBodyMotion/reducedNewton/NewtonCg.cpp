@@ -11,7 +11,7 @@ namespace rbm::motion {
 
 NewtonCg::NewtonCg(const RbmProblem& problem, ReducedEnergy& energy, LaplacianPreconditioner& preconditioner,
                    const RelativeDisplacement& relativeDisplacement, const NewtonCgOptions& options)
-    : energy_(energy), preconditioner_(preconditioner), relativeDisplacement_(relativeDisplacement), options_(options)
+    : problem_(problem), energy_(energy), preconditioner_(preconditioner), relativeDisplacement_(relativeDisplacement), options_(options)
 {
     if (problem.dimension() == 3) {
         // 3D: Eisenstat–Walker's exponent (1 + √5)/2 instead of 2 (PETSc's SNES default), and the
@@ -66,12 +66,12 @@ NewtonCg::Outcome NewtonCg::step(ReducedIterate& point, const CompactUnknowns& u
     bool negativeCurvature = false;
     if (!direction(g, forcing_, firstPreconditioned, step, linearIterations, negativeCurvature))
         return Outcome::linearSolveFailed;
-    double slope = dotProduct(g, step);
+    double slope = problem_.compactDot(g, step);
     if (!(slope < 0.0)) {
         // Not a descent direction (rounding near a negative curvature): a local/global step.
         if (!preconditioner_.apply(g, step)) return Outcome::linearSolveFailed;
         for (double& value : step) value = -value;
-        slope = dotProduct(g, step);
+        slope = problem_.compactDot(g, step);
         negativeCurvature = true;
     }
     if (negativeCurvature) ++localGlobalSteps_;
@@ -88,14 +88,14 @@ NewtonCg::Outcome NewtonCg::step(ReducedIterate& point, const CompactUnknowns& u
         },
         [&] {
             energy_.gradient(trial_, trialRotations_, trialGradient_);
-            trialGradientNorm = euclideanNorm(trialGradient_);
+            trialGradientNorm = problem_.compactNorm(trialGradient_);
             gradientKnown = true;
             return trialGradientNorm < point.gradientNorm;
         });
     if (!search.accepted) return Outcome::lineSearchFailed;
     if (!gradientKnown) {
         energy_.gradient(trial_, trialRotations_, trialGradient_);
-        trialGradientNorm = euclideanNorm(trialGradient_);
+        trialGradientNorm = problem_.compactNorm(trialGradient_);
     }
     if (monitor)
         std::printf("  reduced Newton %d: |P grad| %.6e -> %.6e, CG %d (forcing %.2e), step %.3g, energy %.12e%s\n",
@@ -124,18 +124,18 @@ bool NewtonCg::direction(std::span<const double> g, double forcing, const std::v
     for (std::vector<double>* work : {&r, &z, &previousZ, &p, &sp}) work->resize(size);
     for (std::size_t k = 0; k < size; ++k) r[k] = -g[k];
     std::fill(step.begin(), step.end(), 0.0);
-    const double target = forcing * euclideanNorm(g);
+    const double target = forcing * problem_.compactNorm(g);
     if (firstPreconditioned) z = *firstPreconditioned;
     else if (!preconditioner_.apply(r, z)) return false;
     p = z;
     // The step is good enough once K⁻¹ of its residual, the gradient it leaves to first order,
     // is half the displacement tolerance: the next Newton iteration then stops.
     const double displacementTarget = 0.5 * options_.displacementTolerance;
-    double rz = dotProduct(r, z);
+    double rz = problem_.compactDot(r, z);
     negativeCurvature = false;
     for (int iteration = 0; iteration < options_.maximumLinearIterations; ++iteration) {
         energy_.applyHessian(p, sp);
-        const double curvature = dotProduct(p, sp);
+        const double curvature = problem_.compactDot(p, sp);
         if (!(curvature > 0.0)) {
             // Steihaug: stop at a direction of negative curvature. With nothing yet, the
             // preconditioned gradient −K⁻¹∇Ẽ (a local/global step).
@@ -149,14 +149,14 @@ bool NewtonCg::direction(std::span<const double> g, double forcing, const std::v
             r[k] -= alpha * sp[k];
         }
         ++iterations;
-        if (euclideanNorm(r) <= target) return true;
+        if (problem_.compactNorm(r) <= target) return true;
         previousZ.swap(z);
         if (!preconditioner_.apply(r, z)) return false;
         if (displacementTarget > 0.0 && relativeDisplacement_.largest(z) <= displacementTarget) return true;
         double numerator = 0.0;
         for (std::size_t k = 0; k < size; ++k) numerator += r[k] * (z[k] - previousZ[k]);
         const double beta = std::max(0.0, numerator / rz);
-        rz = dotProduct(r, z);
+        rz = problem_.compactDot(r, z);
         for (std::size_t k = 0; k < size; ++k) p[k] = z[k] + beta * p[k];
     }
     return true;  // the iteration limit: the step so far still is a descent direction

@@ -59,6 +59,7 @@ private:
     bool direction(std::span<const double> g, double forcing, const std::vector<double>* firstPreconditioned,
                    std::span<double> step, int& iterations, bool& negativeCurvature);
 
+    const RbmProblem& problem_;  // its reductions (a part's over the ranks)
     ReducedEnergy& energy_;
     LaplacianPreconditioner& preconditioner_;
     const RelativeDisplacement& relativeDisplacement_;

@@ -27,12 +27,12 @@ double RelativeDisplacement::largest(std::span<const double> v) const
 {
     const int dim = problem_.dimension();
     double largest = 0.0;
-    for (int a = 0; a < problem_.unknownNodeCount(); ++a) {
+    for (int a = 0; a < problem_.ownedUnknownCount(); ++a) {  // a part: the largest over the ranks
         double squared = 0.0;
         for (int q = 0; q < dim; ++q) squared += v[static_cast<std::size_t>(a) * dim + q] * v[static_cast<std::size_t>(a) * dim + q];
         largest = std::max(largest, std::sqrt(squared) * inverseShortestEdge_[a]);
     }
-    return largest;
+    return problem_.maximumOverRanks(largest);
 }
 
 } // namespace rbm::motion

@@ -14,8 +14,11 @@ namespace rbm::motion {
 namespace {
 
 // -rbm_reduced_correction_memory N and -rbm_reduced_harmonic_basis false override the options.
-WarmStartOptions withPetscOptions(WarmStartOptions options)
+// A part (RbmProblem::isPart) has neither the turned start nor the harmonic basis: both look at
+// the whole prescribed boundary.
+WarmStartOptions withPetscOptions(WarmStartOptions options, const RbmProblem& problem)
 {
+    if (problem.isPart()) options.turnedStart = options.harmonicBasis = false;
     PetscInt memory = options.correctionMemory;
     RBM_CHECK_PETSC(PetscOptionsGetInt(nullptr, "rbm_reduced_", "-correction_memory", &memory, nullptr));
     options.correctionMemory = std::max<int>(0, static_cast<int>(memory));
@@ -30,7 +33,7 @@ WarmStartOptions withPetscOptions(WarmStartOptions options)
 WarmStart::WarmStart(const RbmProblem& problem, ReducedEnergy& energy, LaplacianPreconditioner& preconditioner,
                      const RelativeDisplacement& relativeDisplacement, const WarmStartOptions& options)
     : problem_(problem), energy_(energy), preconditioner_(preconditioner), relativeDisplacement_(relativeDisplacement),
-      options_(withPetscOptions(options)), harmonicBasis_(problem, preconditioner, options_.harmonicBasis)
+      options_(withPetscOptions(options, problem)), harmonicBasis_(problem, preconditioner, options_.harmonicBasis)
 {
 }
 
@@ -94,12 +97,14 @@ void WarmStart::extrapolateAlongHistory(std::span<const Vector3> prescribedDispl
     const std::vector<Vector3>& last = solutionHistory_[0];
     const std::vector<Vector3>& previous = solutionHistory_[1];
     double numerator = 0.0, denominator = 0.0;
-    for (int node = 0; node < n; ++node) {
+    for (int node = 0; node < problem_.ownedNodeCount(); ++node) {  // a part: its owned nodes, summed over the ranks
         if (problem_.isUnknown(node)) continue;
         const Vector3 step = flat(last[node] - previous[node]);
         numerator += dot(flat(prescribedDisplacement[node]) - flat(last[node]), step);
         denominator += normSquared(step);
     }
+    numerator = problem_.sumOverRanks(numerator);
+    denominator = problem_.sumOverRanks(denominator);
     const double secant = denominator > 0.0 ? numerator / denominator : 0.0;
     std::vector<double> coefficients{std::clamp(secant, -2.0, 2.0)};
     // |α| beyond 2: the boundary moves back past the last step (a turning point of the
@@ -108,7 +113,8 @@ void WarmStart::extrapolateAlongHistory(std::span<const Vector3> prescribedDispl
     // the last result and each older one, or the fit over all (bestPredictorOnBoundary);
     // in a periodic motion the step after each reversal then starts at the result of the
     // step mirroring it (the same boundary).
-    if (std::abs(secant) > 2.0 && solutionHistory_.size() >= 3)
+    // (Not on a part: the fit sums over the prescribed nodes without reductions.)
+    if (std::abs(secant) > 2.0 && solutionHistory_.size() >= 3 && !problem_.isPart())
         coefficients = bestPredictorOnBoundary(prescribedDisplacement, std::move(coefficients));
     for (std::size_t j = 0; j < coefficients.size(); ++j) {
         if (coefficients[j] == 0.0) continue;
@@ -149,7 +155,6 @@ void WarmStart::keepTurnedStartIfLower(std::span<const Vector3> prescribedDispla
 WarmStart::Predicted WarmStart::predictFromGuess(std::span<const Vector3> prescribedDisplacement,
                                                  const RbmState& initialGuess, std::span<const double> offset)
 {
-    const int n = problem_.nodeCount();
     const int m = problem_.unknownNodeCount();
     const int dim = problem_.dimension();
     const std::size_t size = static_cast<std::size_t>(m) * dim;
@@ -169,17 +174,22 @@ WarmStart::Predicted WarmStart::predictFromGuess(std::span<const Vector3> prescr
     problem_.checkNodeArray(initialGuess.displacement, "initial guess displacement");
     std::vector<Vector3> base(initialGuess.displacement.begin(), initialGuess.displacement.end());
     result.chained = solutionHistory_.size() >= 2 && solutionHistory_[0] == base;
+    if (problem_.isPart()) result.chained = problem_.sumOverRanks(result.chained ? 0.0 : 1.0) == 0.0;  // all ranks alike
     if (result.chained) extrapolateAlongHistory(prescribedDisplacement, base);
     // On the prescribed nodes: the predictor's miss, the sizes of the new boundary, the
     // predictor's and the guess's (the two tests to rounding below).
     double missSquared = 0.0, restSquared = 0.0, baseSquared = 0.0, lastSquared = 0.0;
-    for (int node = 0; node < n; ++node) {
+    for (int node = 0; node < problem_.ownedNodeCount(); ++node) {  // a part: summed over the ranks below
         if (problem_.isUnknown(node)) continue;
         missSquared += normSquared(flat(prescribedDisplacement[node]) - flat(base[node]));
         restSquared += normSquared(flat(prescribedDisplacement[node]));
         baseSquared += normSquared(flat(base[node]));
         lastSquared += normSquared(flat(initialGuess.displacement[node]));
     }
+    missSquared = problem_.sumOverRanks(missSquared);
+    restSquared = problem_.sumOverRanks(restSquared);
+    baseSquared = problem_.sumOverRanks(baseSquared);
+    lastSquared = problem_.sumOverRanks(lastSquared);
     // The predictor meets the prescribed boundary to rounding (a turning point of the motion
     // back to a boundary met before, whose kept result it reproduces; a boundary back at
     // rest): the start is usually the minimum already (the driver's displacement test comes first).
@@ -265,7 +275,7 @@ WarmStart::Start WarmStart::start(std::span<const Vector3> prescribedDisplacemen
     }
     result.point.gradient.assign(offset.size(), 0.0);
     energy_.gradient(u, rotations, result.point.gradient);
-    result.point.gradientNorm = euclideanNorm(result.point.gradient);
+    result.point.gradientNorm = problem_.compactNorm(result.point.gradient);
     result.chained = predicted.chained;
     result.boundaryReproduced = predicted.boundaryReproduced;
     result.failure = predicted.failure;
@@ -318,16 +328,16 @@ std::vector<double> WarmStart::bestPredictorOnBoundary(std::span<const Vector3> 
     secant.resize(columns, 0.0);
     candidates.push_back(std::move(secant));
     for (std::size_t j = 1; j < columns; ++j) {
-        const double squared = dotProduct(d.columns[j], d.columns[j]);
+        const double squared = problem_.compactDot(d.columns[j], d.columns[j]);
         if (!(squared > 0.0)) continue;
         std::vector<double> alone(columns, 0.0);
-        alone[j] = std::clamp(dotProduct(d.target, d.columns[j]) / squared, -2.0, 2.0);
+        alone[j] = std::clamp(problem_.compactDot(d.target, d.columns[j]) / squared, -2.0, 2.0);
         candidates.push_back(std::move(alone));
     }
     const auto [basis, r, kept] = orthonormalise(d.columns);
     std::vector<double> all(columns, 0.0);
     for (std::size_t i = basis.size(); i-- > 0;) {  // R c = Qᵀ target, R upper triangular
-        double value = dotProduct(basis[i], d.target);
+        double value = problem_.compactDot(basis[i], d.target);
         for (std::size_t l = i + 1; l < basis.size(); ++l) value -= r[l][i] * all[kept[l]];
         all[kept[i]] = value / r[i][i];
     }
@@ -339,7 +349,7 @@ std::vector<double> WarmStart::bestPredictorOnBoundary(std::span<const Vector3> 
         for (std::size_t j = 0; j < columns; ++j)
             if (c[j] != 0.0)
                 for (std::size_t k = 0; k < left.size(); ++k) left[k] -= c[j] * d.columns[j][k];
-        return euclideanNorm(left);
+        return problem_.compactNorm(left);
     };
     auto reach = [](const std::vector<double>& c) {
         double largest = 0.0;
@@ -352,7 +362,7 @@ std::vector<double> WarmStart::bestPredictorOnBoundary(std::span<const Vector3> 
         misfits.push_back(misfit(c));
         best = std::min(best, misfits.back());
     }
-    const double scale = euclideanNorm(d.target);
+    const double scale = problem_.compactNorm(d.target);
     std::size_t chosen = 0;
     bool found = false;
     for (std::size_t k = 0; k < candidates.size(); ++k) {
@@ -386,8 +396,8 @@ int WarmStart::subspaceStep(ReducedIterate& point, const CompactUnknowns& unknow
     std::vector<double> a(static_cast<std::size_t>(k) * k), b(static_cast<std::size_t>(k));
     for (int j = 0; j < k; ++j) {
         energy_.applyHessian(basis[j], product);
-        for (int i = 0; i < k; ++i) a[static_cast<std::size_t>(i) * k + j] = dotProduct(basis[i], product);
-        b[j] = -dotProduct(basis[j], g);
+        for (int i = 0; i < k; ++i) a[static_cast<std::size_t>(i) * k + j] = problem_.compactDot(basis[i], product);
+        b[j] = -problem_.compactDot(basis[j], g);
     }
     for (int i = 0; i < k; ++i)
         for (int j = 0; j < i; ++j) a[static_cast<std::size_t>(i) * k + j] = a[static_cast<std::size_t>(j) * k + i] =
@@ -416,7 +426,7 @@ int WarmStart::subspaceStep(ReducedIterate& point, const CompactUnknowns& unknow
     std::vector<double> step(g.size(), 0.0);
     for (int j = 0; j < k; ++j)
         for (std::size_t q = 0; q < step.size(); ++q) step[q] += c[j] * basis[j][q];
-    const double slope = dotProduct(g, step);  // −bᵀA⁻¹b < 0
+    const double slope = problem_.compactDot(g, step);  // −bᵀA⁻¹b < 0
     // A decrease the energy's rounding cannot show (a start at the minimum already: a warm start
     // from the solution, or one solved to round-off): not taken.
     if (!(-0.5 * slope > 1e-13 * std::abs(energy))) {
@@ -439,7 +449,7 @@ int WarmStart::subspaceStep(ReducedIterate& point, const CompactUnknowns& unknow
     rotations.swap(trialRotations_);
     energy = trialEnergy;
     energy_.gradient(u, rotations, g);
-    point.gradientNorm = euclideanNorm(g);
+    point.gradientNorm = problem_.compactNorm(g);
     return k;
 }
 
@@ -467,7 +477,7 @@ void WarmStart::record(const Start& start, const std::vector<Vector3>& u, bool c
         const bool significant =
             options_.displacementTolerance > 0.0
                 ? relativeDisplacement_.largest(newCorrection) > significantCorrection * options_.displacementTolerance
-                : euclideanNorm(newCorrection) > 0.0;
+                : problem_.compactNorm(newCorrection) > 0.0;
         if (significant) {
             recentCorrections_.insert(recentCorrections_.begin(), std::move(newCorrection));
             if (recentCorrections_.size() > static_cast<std::size_t>(options_.correctionMemory))

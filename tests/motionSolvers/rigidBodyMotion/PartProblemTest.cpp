@@ -14,6 +14,7 @@
 #include "MeshPart.hpp"
 #include "PartProblem.hpp"
 #include "ReducedEnergy.hpp"
+#include "ReducedNewtonSolver.hpp"
 
 #include <gtest/gtest.h>
 
@@ -123,6 +124,62 @@ TEST(PartProblem, BlocksEvaluateAsTheWholeProblem) { checkPartAgainstWhole(rbm::
 TEST(PartProblem, ScatteredCellsEvaluateAsTheWholeProblem)
 {
     checkPartAgainstWhole(rbm::test::scatteredDecomposition);
+}
+
+// The prescribed displacements of a turn of the top by `degrees` (the bottom as displacementAt
+// has it, nearly zero), one per node of `problem`.
+std::vector<Vector3> turnedTop(const RbmProblem& problem, double degrees)
+{
+    std::vector<Vector3> prescribed;
+    for (const Vector3& x : problem.referencePoints()) prescribed.push_back(degrees / 25.0 * displacementAt(x));
+    return prescribed;
+}
+
+// The reduced Newton solver on the parts ends where it ends on the whole problem: a cold solve
+// of the top turned 25° and a warm one (from it) turned 35°, within 1e-6 of the shortest edge.
+void checkSolveAgainstWhole(const rbm::test::BoxDecomposition& decomposition)
+{
+    const DecomposedBox box(nx, ny, nz, decomposition);
+    const std::vector<NodeConstraint> wholeConstraints = constraintsOf(box);
+    const RbmProblem whole(3, box.mesh.points, box.graph, wholeConstraints);
+    const MeshPart part(PETSC_COMM_WORLD, box.localCells(rbm::test::worldRank()));
+    std::vector<NodeConstraint> constraints;
+    for (Label g : part.nodeGlobalIds()) constraints.push_back(wholeConstraints[g]);
+    const RbmProblem problem = partProblem(3, part, constraints);
+    ReducedNewtonOptions options;
+    options.displacementTolerance = 1e-9;
+    options.laplacianRelativeTolerance = 1e-6;
+    ReducedNewtonSolver wholeSolver(whole, options);
+    ReducedNewtonSolver partSolver(problem, options);
+    RbmResult wholeResult, partResult;
+    for (double degrees : {25.0, 35.0}) {
+        const bool warm = degrees > 25.0;
+        wholeResult = wholeSolver.solve(turnedTop(whole, degrees), warm ? &wholeResult : nullptr);
+        partResult = partSolver.solve(turnedTop(problem, degrees), warm ? &partResult : nullptr);
+        ASSERT_TRUE(wholeResult.converged) << wholeResult.reason;
+        ASSERT_TRUE(partResult.converged) << partResult.reason;
+        EXPECT_GE(partResult.iterations, 1);
+        EXPECT_NEAR(partResult.energy, wholeResult.energy, 1e-6 * wholeResult.energy);
+        double largestMiss = 0.0, moved = 0.0;
+        for (Label node = 0; node < part.nodeCount(); ++node) {
+            const Label g = part.nodeGlobalIds()[node];
+            largestMiss = std::max(largestMiss, norm(partResult.displacement[node] - wholeResult.displacement[g]) /
+                                                    whole.shortestNeighbourDistance(g));
+            moved = std::max(moved, norm(wholeResult.displacement[g]));
+        }
+        EXPECT_LT(largestMiss, 1e-6) << degrees << "°";
+        EXPECT_GT(moved, 0.1) << "the interior moves";
+    }
+}
+
+TEST(PartProblem, ReducedNewtonOnThePartsEndsAsOnTheWholeProblem)
+{
+    checkSolveAgainstWhole(rbm::test::blockDecomposition(nx, ny));
+}
+
+TEST(PartProblem, ReducedNewtonOnScatteredPartsEndsAsOnTheWholeProblem)
+{
+    checkSolveAgainstWhole(rbm::test::scatteredDecomposition);
 }
 
 TEST(PartProblem, ConstraintsMustCoverEveryNode)
