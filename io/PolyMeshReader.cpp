@@ -307,6 +307,15 @@ std::vector<Vector3> readPolyMeshPoints(const fs::path& path)
     return readPointsOf(openMeshFile(file));
 }
 
+std::vector<Label> readLabelListFile(const fs::path& path, std::string_view what, std::size_t maxCount)
+{
+    const MeshFile file = openMeshFile(path);
+    FoamListReader reader = file.listReader();
+    std::vector<Label> labels = reader.readLabelList(what, maxCount);
+    reader.expectEnd();
+    return labels;
+}
+
 std::vector<Patch> readBoundaryFile(const fs::path& boundaryFile)
 {
     FoamFileHeader header;

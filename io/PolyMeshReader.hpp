@@ -17,6 +17,7 @@
 #include "Vector3.hpp"
 
 #include <filesystem>
+#include <string_view>
 #include <vector>
 
 namespace rbm::io {
@@ -28,6 +29,10 @@ PolyMesh readPolyMesh(const std::filesystem::path& polyMeshDir);
 // ("<case>/<time>/polyMesh"), of `path`/polyMesh/points(.gz) when it is a time folder
 // ("<case>/<time>"), else of the file `path` (or `path`.gz) itself.
 std::vector<Vector3> readPolyMeshPoints(const std::filesystem::path& path);
+
+// Reads a labelList file of the polyMesh (e.g. decomposePar's pointProcAddressing), `path` or
+// `path`.gz, ascii or binary; `what` names an entry in messages, at most maxCount entries.
+std::vector<Label> readLabelListFile(const std::filesystem::path& path, std::string_view what, std::size_t maxCount);
 
 // Reads a boundary file's patches (not checked against a mesh).
 std::vector<Patch> readBoundaryFile(const std::filesystem::path& boundaryFile);

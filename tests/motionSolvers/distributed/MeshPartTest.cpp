@@ -11,12 +11,15 @@
 #include "PetscTestEnvironment.hpp"
 
 #include "DecomposedBox.hpp"
+#include "DecomposedCase.hpp"
+#include "PolyMeshReader.hpp"
 #include "MeshPart.hpp"
 #include "NodeExchange.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <cmath>
 #include <vector>
 
@@ -136,6 +139,34 @@ TEST(MeshPart, PointsSharedByFourRanksAroundAnEdgeHaveTheLowestOwner)
             EXPECT_EQ(part.nodeOwnerRanks()[node], 0);
         }
     EXPECT_EQ(sharedByFour, nz + 1);
+}
+
+// decomposePar's own split of a 6 × 5 × 4 box into 4 (tests/data/decomposed): each rank reads
+// its processor folder (its processor patches and pointProcAddressing, localCellsOf), and the
+// parts match the undecomposed mesh as above. Processors 0 and 3 share only the middle edge.
+TEST(MeshPart, DecomposeParsProcessorFoldersMatchTheWholeMesh)
+{
+    if (worldSize() != 4) GTEST_SKIP() << "needs 4 ranks (the fixture has 4 processors)";
+    const std::filesystem::path fixture = std::filesystem::path(RBM_TEST_DATA_DIR) / "decomposed";
+    const PolyMesh whole = io::readPolyMesh(fixture / "constant" / "polyMesh");
+    const CellNeighbourGraph wholeGraph = buildCellNeighbourGraph(whole);
+    const io::ProcessorMesh processor = io::readProcessorMesh(fixture, worldRank());
+    const MeshPart part(PETSC_COMM_WORLD, localCellsOf(processor.mesh, processor.pointProcAddressing));
+    EXPECT_EQ(part.globalNodeCount(), whole.pointCount());
+    const CellNeighbourGraph graph = buildCellNeighbourGraph(part.nodeCount(), part.cellOffsets(), part.cellNodes());
+    std::vector<int> owned(whole.pointCount(), 0);
+    for (Label node = 0; node < part.ownedNodeCount(); ++node) {
+        const Label g = part.nodeGlobalIds()[node];
+        owned[g] = 1;
+        EXPECT_EQ(part.nodePoints()[node], whole.points[g]);
+        std::vector<Label> local;
+        for (Label j : graph.neighboursOf(node)) local.push_back(part.nodeGlobalIds()[j]);
+        std::sort(local.begin(), local.end());
+        const auto expected = wholeGraph.neighboursOf(g);
+        EXPECT_EQ(local, std::vector<Label>(expected.begin(), expected.end())) << "global point " << g;
+    }
+    const std::vector<int> owners = sumOverRanks(owned);
+    EXPECT_TRUE(std::all_of(owners.begin(), owners.end(), [](int n) { return n == 1; })) << "a point owned twice or never";
 }
 
 } // namespace
