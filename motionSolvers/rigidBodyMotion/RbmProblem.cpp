@@ -157,6 +157,7 @@ void RbmProblem::build()
     checkSizes();
     computeSlidingNormals();
     numberUnknowns();
+    totalUnknownNodeCount_ = static_cast<long long>(sumOverRanks(ownedUnknownCount_));  // collective for a part
     computeEdgeWeights();
     if (!isPart()) checkUnknownsHeld();
     buildBlockPattern();

@@ -141,6 +141,10 @@ public:
     bool isPart() const { return part_.exchange != nullptr; }
     int ownedNodeCount() const { return isPart() ? part_.ownedNodeCount : nodeCount(); }
     int ownedUnknownCount() const { return ownedUnknownCount_; }
+    // The unknown nodes of the whole problem (a part: every rank's owned ones). Decisions that
+    // skip collective work (no unknowns: nothing to solve) must use this, not the local count,
+    // so that all ranks take them alike.
+    long long totalUnknownNodeCount() const { return totalUnknownNodeCount_; }
     const NodeExchange* nodeExchange() const { return part_.exchange.get(); }
     const ProblemPart& part() const { return part_; }
     // Reductions over the owned unknown nodes, summed (or maximised) over the ranks of a part;
@@ -303,6 +307,7 @@ private:
     std::vector<CoupledPair> coupledPairs_;
     ProblemPart part_;
     int ownedUnknownCount_ = 0;
+    long long totalUnknownNodeCount_ = 0;
 };
 
 // Per-node state: displacements and rotations of ALL nodes (prescribed nodes hold their

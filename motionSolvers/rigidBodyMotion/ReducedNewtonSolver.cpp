@@ -28,7 +28,7 @@ double defaultAbsoluteTolerance(const RbmProblem& problem)
         }
     sum = problem.sumOverRanks(sum);
     const double edges = problem.sumOverRanks(graph.offsets[problem.ownedNodeCount()]);
-    const double unknownNodes = problem.sumOverRanks(problem.ownedUnknownCount());
+    const double unknownNodes = static_cast<double>(problem.totalUnknownNodeCount());
     const double meanWeightedLength = edges > 0 ? sum / edges : 1.0;
     return 1e-11 * meanWeightedLength * std::sqrt(std::max(1.0, unknownNodes));
 }
@@ -74,7 +74,7 @@ bool ReducedNewtonSolver::displacementTestPasses(const std::vector<double>& grad
 RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplacement, const RbmState* initialGuess)
 {
     problem_.checkNodeArray(prescribedDisplacement, "prescribed displacement");
-    if (problem_.unknownNodeCount() == 0) return prescribedOnlyResult(problem_, prescribedDisplacement);
+    if (problem_.totalUnknownNodeCount() == 0) return prescribedOnlyResult(problem_, prescribedDisplacement);
     const bool displacementTest = options_.displacementTolerance > 0.0;
     const CompactUnknowns unknowns(problem_, prescribedDisplacement);
     const WarmStart::Start start = warmStart_.start(prescribedDisplacement, initialGuess, unknowns);

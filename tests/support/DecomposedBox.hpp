@@ -57,6 +57,17 @@ inline int scatteredDecomposition(Label i, Label j, Label k, int ranks)
     return static_cast<int>((7 * i + 3 * j + 5 * k) % ranks);
 }
 
+// The top layer of cells on the last rank, the rest in slabs along x over the others: the last
+// rank then owns no unknown node (its own points are the top's, prescribed in the tests, and
+// the layer below, which lower ranks hold too).
+inline BoxDecomposition topLayerDecomposition(Label nx, Label nz)
+{
+    return [nx, nz](Label i, Label, Label k, int ranks) {
+        if (ranks == 1) return 0;
+        return k == nz - 1 ? ranks - 1 : static_cast<int>(i * (ranks - 1) / nx);
+    };
+}
+
 struct DecomposedBox {
     Label nx, ny, nz;
     PolyMesh mesh;

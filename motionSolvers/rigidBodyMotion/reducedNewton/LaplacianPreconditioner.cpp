@@ -37,7 +37,7 @@ LaplacianPreconditioner::LaplacianPreconditioner(const RbmProblem& problem, Line
                                                  double relativeTolerance)
     : problem_(problem), relativeTolerance_(relativeTolerance)
 {
-    if (problem.unknownNodeCount() == 0) return;
+    if (problem.totalUnknownNodeCount() == 0) return;
     const int dim = problem.dimension();
     // -rbm_reduced_inner_solve: K⁻¹ by CG + GAMG to the relative tolerance instead of one cycle.
     PetscBool innerSolve = PETSC_FALSE;

@@ -32,7 +32,7 @@ ReducedEnergy::ReducedEnergy(const RbmProblem& problem, NeighbourhoodScaling sca
             weightedLengths_[a] += problem.edgeWeights()[e] * norm(d);
         }
     }
-    if (problem.unknownNodeCount() == 0) return;
+    if (problem.totalUnknownNodeCount() == 0) return;
     if (dim == 2) planar_ = std::make_unique<PlanarReducedKernels>(problem, scaling);
     else hessian3D_ = std::make_unique<ReducedHessian3D>(problem);
 }

@@ -137,7 +137,7 @@ std::vector<Vector3> turnedTop(const RbmProblem& problem, double degrees)
 
 // The reduced Newton solver on the parts ends where it ends on the whole problem: a cold solve
 // of the top turned 25° and a warm one (from it) turned 35°, within 1e-6 of the shortest edge.
-void checkSolveAgainstWhole(const rbm::test::BoxDecomposition& decomposition)
+void checkSolveAgainstWhole(const rbm::test::BoxDecomposition& decomposition, bool lastRankOwnsNoUnknown = false)
 {
     const DecomposedBox box(nx, ny, nz, decomposition);
     const std::vector<NodeConstraint> wholeConstraints = constraintsOf(box);
@@ -146,6 +146,10 @@ void checkSolveAgainstWhole(const rbm::test::BoxDecomposition& decomposition)
     std::vector<NodeConstraint> constraints;
     for (Label g : part.nodeGlobalIds()) constraints.push_back(wholeConstraints[g]);
     const RbmProblem problem = partProblem(3, part, constraints);
+    if (lastRankOwnsNoUnknown && rbm::test::worldSize() > 1 && rbm::test::worldRank() == rbm::test::worldSize() - 1) {
+        EXPECT_EQ(problem.ownedUnknownCount(), 0);
+        EXPECT_GT(problem.unknownNodeCount(), 0) << "its ghosts";
+    }
     ReducedNewtonOptions options;
     options.displacementTolerance = 1e-9;
     options.laplacianRelativeTolerance = 1e-6;
@@ -180,6 +184,12 @@ TEST(PartProblem, ReducedNewtonOnThePartsEndsAsOnTheWholeProblem)
 TEST(PartProblem, ReducedNewtonOnScatteredPartsEndsAsOnTheWholeProblem)
 {
     checkSolveAgainstWhole(rbm::test::scatteredDecomposition);
+}
+
+// A rank that owns no unknown node takes part in every collective step all the same.
+TEST(PartProblem, ReducedNewtonWithARankWithoutUnknownsEndsAsOnTheWholeProblem)
+{
+    checkSolveAgainstWhole(rbm::test::topLayerDecomposition(nx, nz), true);
 }
 
 TEST(PartProblem, ConstraintsMustCoverEveryNode)
