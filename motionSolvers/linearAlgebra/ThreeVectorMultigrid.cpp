@@ -241,6 +241,8 @@ void ThreeVectorMultigrid::setUp(std::span<const int> rowOffsets, std::span<cons
         fine.singleValues.assign(fine.values, fine.values + fine.offsets[fine.rows]);
     }
     for (std::size_t index = 0; index + 1 < levels_.size(); ++index) estimateLambda(levels_[index]);
+    // From here on the products read the single-precision copy only (readsFinestValues).
+    if (!levels_.front().singleValues.empty()) levels_.front().values = nullptr;
 }
 
 double ThreeVectorMultigrid::bytes() const

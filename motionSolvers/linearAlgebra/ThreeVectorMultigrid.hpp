@@ -62,6 +62,10 @@ public:
     // z = M⁻¹ r, interleaved vectors (3 values per row).
     void apply(std::span<const double> r, std::span<double> z);
 
+    // Whether apply() reads the caller's finest values: not once they are held in single
+    // precision (more than one level), and the caller may then release them.
+    bool readsFinestValues() const { return levels_.front().values != nullptr; }
+
     int levelCount() const { return static_cast<int>(levels_.size()); }
     int rows(int level) const { return levels_[level].rows; }
     // Bytes held (copies of the coarse levels, transfers, work vectors).
