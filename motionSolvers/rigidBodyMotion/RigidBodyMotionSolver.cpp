@@ -100,7 +100,9 @@ struct RigidBodyMotionSolver::Impl {
     UnconstrainedPatches unconstrained;   // zeroGradient-like patches: slide on their surface or float
     std::unique_ptr<PseudoTwoDMesh> twoD; // a pseudo-3D mesh is solved on its front plane
     int dimension;
-    std::vector<Vector3> referencePoints;  // per node (2D: frame coordinates of the front plane)
+    // Per node (2D: frame coordinates of the front plane): the owner's points0 or twoD's planar
+    // points themselves, neither of which changes (a copy was 24 bytes a node).
+    const std::vector<Vector3>& referencePoints;
     std::shared_ptr<const CellNeighbourGraph> graph;
     CyclicCoupling cyclic;                  // node pairs of the cyclic patches
     std::vector<double> interfaceFactors;   // interfaceEdgeFactors(cyclic); empty without pairs
