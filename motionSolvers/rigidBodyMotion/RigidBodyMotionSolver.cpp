@@ -182,6 +182,7 @@ RigidBodyMotionSolver::Impl::Impl(RigidBodyMotionSolver& solver, RigidBodyMotion
 {
     const std::vector<Vector3> zero(referencePoints.size());
     initialInverted = inverted.count(zero);
+    inverted.forgetLastCheck();  // the reference mesh's is not asked again: no copy through the first solve
     updateProblem();
 }
 
@@ -334,10 +335,9 @@ double RigidBodyMotionSolver::Impl::smallestCellSizeRatio() const
 void RigidBodyMotionSolver::Impl::solveOnInitialMesh(std::span<const Vector3> target, MotionSolveReport& report)
 {
     if (!baseSolver) baseSolver = makeRbmSolver(*problem, options);
-    const int n = nodeCount();
-    const std::vector<Vector3> rest(hasState ? 0 : n);
+    // From the last step's boundary, or (empty) from the reference mesh.
     const BoundaryPath path(dimension, referencePoints, groups.offsets, groups.nodes,
-                            hasState ? std::span<const Vector3>(statePrescribed) : std::span<const Vector3>(rest), target);
+                            hasState ? std::span<const Vector3>(statePrescribed) : std::span<const Vector3>{}, target);
     const bool automatic = options.automaticSubSteps();
     const int count = automatic ? 1 : options.subSteps;
 
@@ -350,7 +350,9 @@ void RigidBodyMotionSolver::Impl::solveOnInitialMesh(std::span<const Vector3> ta
     RbmResult last;
     // Segment [from, to] of the path at depth `depth` of halving.
     auto solveSegment = [&](auto&& self, double from, double to, int depth) -> void {
-        const std::vector<Vector3> boundary = path.at(to);
+        // The path's end is the target itself, not a copy (at(1) would copy it).
+        const std::vector<Vector3> between = to < 1.0 ? path.at(to) : std::vector<Vector3>{};
+        const std::span<const Vector3> boundary = to < 1.0 ? std::span<const Vector3>(between) : target;
         RbmResult result = baseSolver->solve(boundary, guess);
         report.iterations += result.iterations;
         if (splitting.allows(depth) && !splitting.accept(depth, inverted.count(result.displacement) > initialInverted)) {

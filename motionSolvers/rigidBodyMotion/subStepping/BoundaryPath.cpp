@@ -23,7 +23,7 @@ std::vector<Vector3> BoundaryPath::at(double fraction) const
     if (fraction >= 1.0) return {to_.begin(), to_.end()};
     std::vector<Vector3> values(to_.size());
     for (std::size_t node = 0; node < values.size(); ++node)
-        values[node] = from_[node] + fraction * (to_[node] - from_[node]);
+        values[node] = fromOf(static_cast<int>(node)) + fraction * (to_[node] - fromOf(static_cast<int>(node)));
     for (std::size_t group = 0; group < motions_.size(); ++group) {
         const GroupMotion& motion = motions_[group];
         if (!motion.rigid) continue;
@@ -62,7 +62,7 @@ Vector3 BoundaryPath::flat(Vector3 v) const
 
 Vector3 BoundaryPath::position(int node, std::span<const Vector3> displacement) const
 {
-    return flat(reference_[node] + displacement[node]);
+    return flat(reference_[node] + (displacement.empty() ? Vector3{} : displacement[node]));
 }
 
 void BoundaryPath::fit(int group)
@@ -114,7 +114,7 @@ void BoundaryPath::fit(int group)
         const Vector3 a = position(node, from_) - centreFrom;
         const Vector3 b = position(node, to_);
         radius = std::max(radius, norm(a));
-        largestMove = std::max(largestMove, norm(to_[node] - from_[node]));
+        largestMove = std::max(largestMove, norm(to_[node] - fromOf(node)));
         misfit = std::max(misfit, norm(centreTo + rotation * a - b));
     }
     GroupMotion& motion = motions_[group];

@@ -20,7 +20,7 @@ class BoundaryPath {
 public:
     // `reference`: the nodes' reference positions (2D: frame coordinates, z ignored). The path
     // reads `from` and `to` where the caller keeps them (two arrays per node fewer): they
-    // must outlive it, unchanged.
+    // must outlive it, unchanged. An empty `from` is the reference mesh (zero everywhere).
     BoundaryPath(int dimension, const std::vector<Vector3>& reference, const std::vector<int>& groupOffsets,
                  const std::vector<int>& groupNodes, std::span<const Vector3> from, std::span<const Vector3> to);
 
@@ -42,6 +42,7 @@ private:
     };
 
     Vector3 flat(Vector3 v) const;
+    Vector3 fromOf(int node) const { return from_.empty() ? Vector3{} : from_[node]; }
     Vector3 position(int node, std::span<const Vector3> displacement) const;
     void fit(int group);
 
