@@ -17,6 +17,7 @@
 #include "RbmEnergy.hpp"
 #include "RbmSolverSelection.hpp"
 #include "RbmUntangling.hpp"
+#include "ReturnFreedMemory.hpp"
 #include "ScopedPetscOptions.hpp"
 #include "SubStepSplitting.hpp"
 #include "SubStepping.hpp"
@@ -582,6 +583,7 @@ MotionSolveReport RigidBodyMotionSolver::solve()
     } else {
         if (impl.options.formulation == RbmFormulation::nonlinear) impl.solveOnInitialMesh(target, report);
         else impl.solveInIncrements(target, report);
+        returnFreedMemory();  // the solve's work arrays, before the checks and the caller's output
         impl.hasState = true;
         impl.statePrescribed = target;
         impl.untangleState(report);
