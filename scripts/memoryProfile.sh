@@ -30,12 +30,11 @@ rm -rf "$case/1" "$case/postProcessing"
 OMPI_MCA_ess_singleton_isolated=1 valgrind --tool=massif --massif-out-file="$data" --threshold=0.2 --depth=40 \
     "$program" -case "$case" -noVTK > "$data.log" 2>&1 || { cat "$data.log"; exit 1; }
 points=$(sed -n 's/^Mesh *: \([0-9]*\) points.*/\1/p' "$data.log" | head -1)
-commit=${MEMORY_COMMIT:-$(git -C "$here" rev-parse --short HEAD 2>/dev/null || echo unknown)}
-[ -n "${MEMORY_COMMIT:-}" ] || git -C "$here" diff --quiet 2>/dev/null || commit="$commit + uncommitted changes"
-echo "Memory profile of \`$(basename "$program") -case $case -noVTK\` (OMP_NUM_THREADS=$OMP_NUM_THREADS, valgrind massif):"
-echo "rbm $commit, $(date -u +%Y-%m-%d), $points points; whole process without valgrind: peak $((maxRssKiB / 1024)) MiB (VmHWM)."
-grep -E '^Time = ' "$data.log" | head -1 | tr -s ' '
-echo
+source "$here/scripts/profileStamp.sh"
+commit=$(profileCommit "$here" "${MEMORY_COMMIT:-}")
+profileHeading "Memory profile of \`$(basename "$program") -case $case -noVTK\` (OMP_NUM_THREADS=$OMP_NUM_THREADS, valgrind massif):" \
+    "rbm $commit, $(date -u +%Y-%m-%d), $points points; whole process without valgrind: peak $((maxRssKiB / 1024)) MiB (VmHWM)." \
+    "$data.log"
 # The peak snapshot's heap tree: every leaf (an allocation site's bytes, or massif's "in N
 # places" remainder) goes to the item of the first frame, from the allocation outwards, that
 # names one; the items are disjoint and add up to the heap at the peak.
