@@ -89,9 +89,11 @@ LaplacianPreconditioner::LaplacianPreconditioner(const RbmProblem& problem, Line
         threeVectorCycle_ = ThreeVectorMultigrid::build(pattern.rowOffsets, pattern.columns, laplacian_, "reduced");
         if (threeVectorCycle_) {
             laplacianByCycle_ = true;
-            // Without sliding nodes only solveScalar's products read K in double precision, and
-            // the edge weights give them (laplacianTimes): K's values go, its diagonal stays.
-            if (!vectorSystem_ && !threeVectorCycle_->readsFinestValues()) {
+            // 3D without sliding nodes (one cycle is K⁻¹, applyInverse) only solveScalar's
+            // products read K in double precision, and the edge weights give them
+            // (laplacianTimes): K's values go, its diagonal stays. Elsewhere projectedCycleSolve's
+            // CG multiplies by K.
+            if (problem_.dimension() == 3 && !vectorSystem_ && !threeVectorCycle_->readsFinestValues()) {
                 diagonal_.resize(static_cast<std::size_t>(problem_.unknownNodeCount()));
                 for (int a = 0; a < problem_.unknownNodeCount(); ++a) diagonal_[a] = laplacian_[pattern.diagonal[a]];
                 std::vector<double>().swap(laplacian_);

@@ -62,9 +62,10 @@ public:
     {
         return cholesky_ || projectedCholesky_ || (threeVectorCycle_ && !vectorSystem_ && problem_.dimension() == 3);
     }
-    // K's entries in blockPattern() order; empty where the 3D cycle without sliding nodes holds
-    // K's finest values in single precision and nothing else reads them (released, 8 bytes a
-    // block: 210 MB at 10⁶ hexahedra). The callers that read them (sliding nodes) keep them.
+    // K's entries in blockPattern() order; empty where one 3D cycle without sliding nodes is
+    // K⁻¹, holds K's finest values in single precision and nothing else reads them (released,
+    // 8 bytes a block: 210 MB at 10⁶ hexahedra). The paths that read them (sliding nodes, 2D
+    // CG with the cycle) keep them.
     const std::vector<double>& laplacian() const { return laplacian_; }
 
 private:
