@@ -27,12 +27,11 @@ rm -rf "$case/1" "$case/postProcessing"
 # The singleton MPI start of rbmBenchmark's runs (no orted daemon).
 OMPI_MCA_ess_singleton_isolated=1 perf record -q -F "$frequency" -e cpu-clock --call-graph dwarf,16384 -o "$data" \
     "$program" -case "$case" -noVTK > "$data.log" 2>&1 || { cat "$data.log"; exit 1; }
-commit=${PHASE_COMMIT:-$(git -C "$here" rev-parse --short HEAD 2>/dev/null || echo unknown)}
-[ -n "${PHASE_COMMIT:-}" ] || git -C "$here" diff --quiet 2>/dev/null || commit="$commit + uncommitted changes"
-echo "Phase profile of \`$(basename "$program") -case $case -noVTK\` (OMP_NUM_THREADS=$OMP_NUM_THREADS, perf $frequency Hz):"
-echo "rbm $commit, $(date -u +%Y-%m-%d), $(nproc --all) cores ($(grep -m1 'model name' /proc/cpuinfo | sed 's/.*: //')), load average $(cut -d' ' -f1-3 /proc/loadavg)."
-grep -E '^Time = ' "$data.log" | head -1 | tr -s ' '
-echo
+source "$here/scripts/profileStamp.sh"
+commit=$(profileCommit "$here" "${PHASE_COMMIT:-}")
+profileHeading "Phase profile of \`$(basename "$program") -case $case -noVTK\` (OMP_NUM_THREADS=$OMP_NUM_THREADS, perf $frequency Hz):" \
+    "rbm $commit, $(date -u +%Y-%m-%d), $(nproc --all) cores ($(grep -m1 'model name' /proc/cpuinfo | sed 's/.*: //')), load average $(cut -d' ' -f1-3 /proc/loadavg)." \
+    "$data.log"
 echo "| phase | share | CPU s |"
 echo "|---|---:|---:|"
 # Each sample goes to the innermost function of its call stack that names a phase (the

@@ -196,8 +196,12 @@ void ThreeVectorMultigrid::setUp(std::span<const int> rowOffsets, std::span<cons
                 }
         }
         const std::size_t size = static_cast<std::size_t>(level.rows) * 3;
-        level.rhs.assign(size, 0.0);
-        level.solution.assign(size, 0.0);
+        if (index > 0 || levelTotal == 1) {
+            level.rhs.assign(size, 0.0);
+            level.solution.assign(size, 0.0);
+            level.b = level.rhs.data();
+            level.x = level.solution.data();
+        }
         level.inverseDiagonal.assign(static_cast<std::size_t>(level.rows), 0.0);
         for (int row = 0; row < level.rows; ++row)
             for (int k = level.offsets[row]; k < level.offsets[row + 1]; ++k)
@@ -241,6 +245,8 @@ void ThreeVectorMultigrid::setUp(std::span<const int> rowOffsets, std::span<cons
         fine.singleValues.assign(fine.values, fine.values + fine.offsets[fine.rows]);
     }
     for (std::size_t index = 0; index + 1 < levels_.size(); ++index) estimateLambda(levels_[index]);
+    // From here on the products read the single-precision copy only (readsFinestValues).
+    if (!levels_.front().singleValues.empty()) levels_.front().values = nullptr;
 }
 
 double ThreeVectorMultigrid::bytes() const
@@ -331,7 +337,9 @@ void ThreeVectorMultigrid::multiply(const Level& level, const double* x, double*
 void ThreeVectorMultigrid::estimateLambda(Level& level)
 {
     const std::size_t size = static_cast<std::size_t>(level.rows) * 3;
-    std::vector<double>& v = level.solution;
+    std::vector<double> finestStart;  // the finest of several levels has no solution vector of its own
+    if (level.solution.empty()) finestStart.resize(size);
+    std::vector<double>& v = level.solution.empty() ? finestStart : level.solution;
     std::vector<double>& w = residual_;
     for (std::size_t k = 0; k < size; ++k) {
         // A fixed, irregular start (golden-ratio sequence): no eigenvector is missed by symmetry.
@@ -368,11 +376,11 @@ void ThreeVectorMultigrid::smooth(Level& level, bool zeroGuess)
     const double sigma = theta / delta;
     double rho = 1.0 / sigma;
     const int rows = level.rows;
-    double* x = level.solution.data();
+    double* x = level.x;
     double* r = residual_.data();
     double* d = direction_.data();
     double* product = product_.data();
-    const double* b = level.rhs.data();
+    const double* b = level.b;
     const double* dinv = level.inverseDiagonal.data();
     const bool threads = worthThreading(static_cast<std::size_t>(level.offsets[rows]));
     // r = D⁻¹ (b − A x), d = r / θ, x += d
@@ -434,14 +442,14 @@ void ThreeVectorMultigrid::cycle(int index)
     smooth(level, true);
     // residual b − A x into level.residual, restricted into coarse.rhs
     double* residual = residual_.data();
-    multiply(level, level.solution.data(), residual);
+    multiply(level, level.x, residual);
     const int rows = level.rows;
     const bool threads = worthThreading(static_cast<std::size_t>(level.offsets[rows]));
 #pragma omp parallel for schedule(static) if (threads)
     for (int row = 0; row < rows; ++row)
         for (int c = 0; c < 3; ++c) {
             const std::size_t k = 3 * static_cast<std::size_t>(row) + c;
-            residual[k] = level.rhs[k] - residual[k];
+            residual[k] = level.b[k] - residual[k];
         }
     const Csr& restriction = level.restriction;
 #pragma omp parallel for schedule(static) if (threads)
@@ -466,7 +474,7 @@ void ThreeVectorMultigrid::cycle(int index)
             const double* ec = coarse.solution.data() + 3 * static_cast<std::size_t>(interpolation.columns[k]);
             s0 += a * ec[0], s1 += a * ec[1], s2 += a * ec[2];
         }
-        double* x = level.solution.data() + 3 * static_cast<std::size_t>(row);
+        double* x = level.x + 3 * static_cast<std::size_t>(row);
         x[0] += s0, x[1] += s1, x[2] += s2;
     }
     smooth(level, false);
@@ -477,6 +485,16 @@ void ThreeVectorMultigrid::apply(std::span<const double> r, std::span<double> z)
     Level& finest = levels_.front();
     const std::size_t size = static_cast<std::size_t>(finest.rows) * 3;
     if (r.size() != size || z.size() != size) throw std::invalid_argument("ThreeVectorMultigrid::apply: sizes do not match");
+    if (finest.rhs.empty()) {
+        if (r.data() < z.data() + z.size() && z.data() < r.data() + r.size())
+            throw std::invalid_argument("ThreeVectorMultigrid::apply: r and z overlap");
+        finest.b = r.data();
+        finest.x = z.data();
+        cycle(0);
+        finest.b = nullptr;
+        finest.x = nullptr;
+        return;
+    }
     std::copy(r.begin(), r.end(), finest.rhs.begin());
     cycle(0);
     std::copy(finest.solution.begin(), finest.solution.end(), z.begin());

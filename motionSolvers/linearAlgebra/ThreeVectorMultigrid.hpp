@@ -59,8 +59,13 @@ public:
     ThreeVectorMultigrid(std::span<const int> rowOffsets, std::span<const int> columns, std::span<const double> values,
                          std::vector<AggregationLevel> coarser);
 
-    // z = M⁻¹ r, interleaved vectors (3 values per row).
+    // z = M⁻¹ r, interleaved vectors (3 values per row); r and z must not overlap (the finest
+    // level works in them directly).
     void apply(std::span<const double> r, std::span<double> z);
+
+    // Whether apply() reads the caller's finest values: not once they are held in single
+    // precision (more than one level), and the caller may then release them.
+    bool readsFinestValues() const { return levels_.front().values != nullptr; }
 
     int levelCount() const { return static_cast<int>(levels_.size()); }
     int rows(int level) const { return levels_[level].rows; }
@@ -80,7 +85,11 @@ private:
         double lambdaMax = 1.0;        // of D⁻¹A
         Csr interpolation;             // from the next coarser level to this one (rows × coarser rows)
         Csr restriction;               // its transpose
-        std::vector<double> rhs, solution;  // interleaved, 3 per row
+        std::vector<double> rhs, solution;  // interleaved, 3 per row; none on the finest of several levels
+        // What the cycle reads and writes: rhs and solution, or on the finest of several levels
+        // apply's r and z (two vectors of the finest size fewer, 48 bytes a row).
+        const double* b = nullptr;
+        double* x = nullptr;
     };
 
     void setUp(std::span<const int> rowOffsets, std::span<const int> columns, std::span<const double> values,

@@ -32,6 +32,13 @@ public:
     Label count(std::span<const Vector3> nodeDisplacement, double* worstQuality = nullptr,
                 std::vector<Label>* invertedCells = nullptr);
 
+    // Drops the remembered last check (its copy of the displacement, 24 bytes a node).
+    void forgetLastCheck()
+    {
+        std::vector<Vector3>().swap(checkedDisplacement_);
+        checkedInverted_ = -1;
+    }
+
 private:
     Label countPlanar(std::span<const Vector3> nodeDisplacement, bool wantWorst, double& worst,
                       std::vector<Label>* invertedCells);

@@ -35,14 +35,16 @@ constexpr double iterativeBytesPerValue = 8.0 + 12.0 + 18.0;
 // (~20), plus the Krylov vectors and the per-node rotation maps.
 constexpr double matrixFreeBytesPerBlock = 8.0 + 12.0 + 20.0;
 constexpr double matrixFreeBytesPerNode = 400.0;
-// reducedNewton in 3D with K iterative (ReducedNewtonSolver.hpp): the scalar K (8 bytes a block)
-// and GAMG's set-up on it (its graph and the coarse operators, transient), as for the other
-// iterative scalar Laplacians, the V-cycle's single-precision copy of K (4 bytes a block), plus
-// per unknown node the reduced Hessian's data (296 bytes, ReducedHessian3D.hpp), the V-cycle's
-// vectors (ThreeVectorMultigrid.hpp, about 130) and the Newton iteration's vectors at the peak
-// (about 170). Checked against the peaks of rbmBenchmark's twist3D case at 10⁵ and 10⁶ cells
-// (peak minus the peak before the solver is built), which it matches to a few per cent.
-constexpr double reducedNewton3DBytesPerNode = 600.0;
+// reducedNewton in 3D with K iterative (ReducedNewtonSolver.hpp), at its peak in the solve: per
+// block of K the V-cycle's single-precision copy of K (4 bytes; K's double values, 8 bytes, and
+// the aggregation's work live only during the set-up, LaplacianPreconditioner.hpp) and the
+// hierarchy's transfers and coarse levels; per unknown node the reduced Hessian's data
+// (ReducedHessian3D.hpp), the V-cycle's vectors (ThreeVectorMultigrid.hpp) and the Newton
+// iteration's vectors (iterate, rotations, CG, line-search trial, warm start). Fitted to the
+// peaks of rbmBenchmark's twist3D case at 1.25·10⁵ and 10⁶ cells (peak minus the peak before
+// the solver is built; benchmarks/results/2026-11-27c-cpp2core-twist3D), within 4 %.
+constexpr double reducedNewton3DBytesPerBlock = 30.0;
+constexpr double reducedNewton3DBytesPerNode = 500.0;
 
 double variantFactor(SolveVariant variant)
 {
@@ -156,7 +158,8 @@ MemoryEstimate estimateSolveMemory(SolveVariant variant, const SolveSize& size, 
         const double values = scalarLaplacian ? size.blocks : size.blocks * blockSize * blockSize;
         estimate.bytes = factor * values * iterativeBytesPerValue;
         if (variant == SolveVariant::coupledReducedNewton && size.dimension == 3)
-            estimate.bytes += factor * (4.0 * size.blocks + size.unknownNodes * reducedNewton3DBytesPerNode);
+            estimate.bytes = factor * (size.blocks * reducedNewton3DBytesPerBlock +
+                                       size.unknownNodes * reducedNewton3DBytesPerNode);
     }
     return estimate;
 }

@@ -12,6 +12,8 @@
 //    unknown nodes, b = 6, fitted to peaks measured on hex boxes (MemoryEstimate.cpp);
 //  - Krylov + multigrid (3D above the row limit, or `linearSolver iterative`): the assembled
 //    block array, PETSc's AIJ copy and the multigrid hierarchy, about 38 bytes per stored value;
+//  - reduced Newton in 3D with K iterative: K's single-precision copy and its multigrid
+//    hierarchy, 30 bytes per block of K, and 500 bytes per unknown node (MemoryEstimate.cpp);
 //  - matrix-free linearized (3D, or `linearSolver matrixFree`):
 //    the scalar displacement Laplacian and its multigrid, ~40 bytes per block, plus ~400 bytes
 //    per node (MemoryEstimate.cpp).

@@ -281,7 +281,6 @@ void RbmProblem::buildBlockPattern()
         blockPattern_.rowOffsets[a + 1] = blockPattern_.rowOffsets[a] + count;
     }
     blockPattern_.columns.assign(blockPattern_.rowOffsets[m], -1);
-    edgeBlock_.assign(g.neighbours.size(), -1);
     for (int a = 0; a < m; ++a) {
         const int i = unknownNodes_[a];
         int position = blockPattern_.rowOffsets[a];
@@ -297,7 +296,6 @@ void RbmProblem::buildBlockPattern()
                 blockPattern_.columns[position++] = a;
                 diagonalPlaced = true;
             }
-            edgeBlock_[e] = position;
             blockPattern_.columns[position++] = b;
         }
         if (!diagonalPlaced) {
@@ -346,6 +344,23 @@ void RbmProblem::forEachEdgeBetweenUnknowns(Visit&& visit) const
             if (b >= 0) visit(e, a, b);
         }
     }
+}
+
+const std::vector<int>& RbmProblem::edgeBlock() const
+{
+    std::call_once(edgeBlock_->built, [this] {
+        std::vector<int>& positions = edgeBlock_->positions;
+        positions.assign(graph_->neighbours.size(), -1);
+        // Row a's unknown neighbours in graph order take its positions in order, skipping the
+        // diagonal's (buildBlockPattern).
+        int row = -1, position = 0;
+        forEachEdgeBetweenUnknowns([&](int e, int a, int) {
+            if (a != row) row = a, position = blockPattern_.rowOffsets[a];
+            if (position == blockPattern_.diagonal[a]) ++position;
+            positions[e] = position++;
+        });
+    });
+    return edgeBlock_->positions;
 }
 
 const std::vector<int>& RbmProblem::edgeTransposeBlock() const

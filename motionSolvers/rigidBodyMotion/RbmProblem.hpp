@@ -220,10 +220,11 @@ public:
 
     // Block pattern of the coupled matrices and, per graph edge e = (i → j) with i and j
     // both unknown, the positions of blocks (i, j) and (j, i) in it (−1 otherwise).
+    // Both built at the first call (thread-safe): only the assembled matrices (Newton,
+    // linearized, decoupled, local/global) use them, and one int per directed edge is 105 MB at
+    // 10⁶ hexahedra; the reduced Newton solver walks the pattern alongside the graph instead.
     const BlockPattern& blockPattern() const { return blockPattern_; }
-    const std::vector<int>& edgeBlock() const { return edgeBlock_; }
-    // Built at the first call (thread-safe): only the assembled Hessians (Newton, linearized)
-    // use it, and one int per directed edge is 105 MB at 10⁶ hexahedra.
+    const std::vector<int>& edgeBlock() const;
     const std::vector<int>& edgeTransposeBlock() const;
 
     // Shortest and mean reference edge length (mesh size for tolerances).
@@ -293,14 +294,14 @@ private:
     std::vector<int> unknownIndex_;
     std::vector<int> unknownNodes_;
     BlockPattern blockPattern_;
-    std::vector<int> edgeBlock_;
-    // The transposed positions and the flag of their one build, shared by copies of the problem
-    // (which have the same pattern).
-    struct TransposeBlocks {
+    // Per directed edge, a block position and the flag of its one build, shared by copies of
+    // the problem (which have the same pattern).
+    struct EdgePositions {
         std::once_flag built;
         std::vector<int> positions;
     };
-    std::shared_ptr<TransposeBlocks> edgeTransposeBlock_ = std::make_shared<TransposeBlocks>();
+    std::shared_ptr<EdgePositions> edgeBlock_ = std::make_shared<EdgePositions>();
+    std::shared_ptr<EdgePositions> edgeTransposeBlock_ = std::make_shared<EdgePositions>();
     double minimumEdgeLength_ = 0.0;
     double meanEdgeLength_ = 0.0;
     int slidingNodeCount_ = 0;

@@ -43,10 +43,10 @@ Symmetric3 symmetricInverse(const Symmetric3& h)
             (m2 * m1 - m0 * m5) / determinant, (m0 * m4 - m1 * m1) / determinant};
 }
 
-Vector3 rotate(const std::array<double, 9>& r, const Vector3& v)
+Vector3 rotate(const Matrix3& r, const Vector3& v)
 {
-    return {r[0] * v.x + r[1] * v.y + r[2] * v.z, r[3] * v.x + r[4] * v.y + r[5] * v.z,
-            r[6] * v.x + r[7] * v.y + r[8] * v.z};
+    return {r.m[0][0] * v.x + r.m[0][1] * v.y + r.m[0][2] * v.z, r.m[1][0] * v.x + r.m[1][1] * v.y + r.m[1][2] * v.z,
+            r.m[2][0] * v.x + r.m[2][1] * v.y + r.m[2][2] * v.z};
 }
 
 } // namespace
@@ -56,7 +56,6 @@ ReducedHessian3D::ReducedHessian3D(const RbmProblem& problem) : problem_(problem
     if (problem.dimension() != 3) throw std::invalid_argument("ReducedHessian3D: a 3D problem is needed");
     const std::size_t m = static_cast<std::size_t>(problem.unknownNodeCount());
     const std::size_t n = static_cast<std::size_t>(problem.nodeCount());
-    rotation_.assign(m, {});
     inverse_.assign(m, {});
     rotatedSum_.assign(m, Vector3{});
     diagonal_.assign(m, 0.0);
@@ -87,12 +86,11 @@ void ReducedHessian3D::prepare(std::span<const Vector3> displacement, std::span<
     const std::vector<int>& nodes = problem_.unknownNodes();
     const std::vector<double>& weights = problem_.edgeWeights();
     const int m = problem_.ownedUnknownCount();
+    rotations_ = rotations;
 #pragma omp parallel for schedule(static) if (worthThreading(graph.neighbours.size()))
     for (int a = 0; a < m; ++a) {
         const int i = nodes[a];
-        std::array<double, 9>& r = rotation_[a];
-        for (int p = 0; p < 3; ++p)
-            for (int q = 0; q < 3; ++q) r[3 * p + q] = rotations[i].m[p][q];
+        const Matrix3& r = rotations[i];
         // H_δδ = Σ w [(q·e) I − (e qᵀ + q eᵀ)/2], q = R_i d, e = d + u_j − u_i
         Symmetric3 h{};
         Vector3 weightedSum{};
@@ -134,7 +132,7 @@ struct PassData {
     const AlignedDouble4* position;
     const AlignedDouble4* vector;
     AlignedDouble4* map;
-    const std::array<double, 9>* rotation;
+    const Matrix3* rotation;  // per node
     const std::array<double, 6>* inverse;
     const Vector3* rotatedSum;
     Vector3* ownTerm;
@@ -160,13 +158,13 @@ struct PassData {
             t2 += d[2] * dv;
         }
         const double t[9] = {t0[0], t0[1], t0[2], t1[0], t1[1], t1[2], t2[0], t2[1], t2[2]};
-        const std::array<double, 9>& r = data.rotation[a];
+        const Matrix3& r = data.rotation[i];
         // A = R T; b = axial(A)
-        auto entry = [&](int p, int q) { return r[3 * p] * t[q] + r[3 * p + 1] * t[3 + q] + r[3 * p + 2] * t[6 + q]; };
+        auto entry = [&](int p, int q) { return r.m[p][0] * t[q] + r.m[p][1] * t[3 + q] + r.m[p][2] * t[6 + q]; };
         const Vector3 b{entry(1, 2) - entry(2, 1), entry(2, 0) - entry(0, 2), entry(0, 1) - entry(1, 0)};
         const Vector3 yi = times(data.inverse[a], b);
         for (int q = 0; q < 3; ++q) {
-            const Vector3 column = cross(yi, Vector3{r[q], r[3 + q], r[6 + q]});
+            const Vector3 column = cross(yi, Vector3{r.m[0][q], r.m[1][q], r.m[2][q]});
             data.map[3 * static_cast<std::size_t>(i) + q].value = Double4{column.x, column.y, column.z, 0.0};
         }
         data.ownTerm[a] = cross(yi, data.rotatedSum[a]);
@@ -229,7 +227,7 @@ void ReducedHessian3D::apply(std::span<const double> v, std::span<double> y)
     if (exchange) exchange->updateGhosts(asDoubles(nodeVector_), 4);
     const int owned = problem_.ownedUnknownCount();
     const PassData data{nodes.data(),       graph.offsets.data(), graph.neighbours.data(), problem_.edgeWeights().data(),
-                        position_.data(),   nodeVector_.data(),   nodeMap_.data(),         rotation_.data(),
+                        position_.data(),   nodeVector_.data(),   nodeMap_.data(),         rotations_.data(),
                         inverse_.data(),    rotatedSum_.data(),   ownTerm_.data(),         diagonal_.data(),
                         y.data()};
     const bool threads = worthThreading(graph.neighbours.size());

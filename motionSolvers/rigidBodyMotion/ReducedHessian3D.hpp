@@ -44,13 +44,15 @@ public:
     explicit ReducedHessian3D(const RbmProblem& problem);
 
     // The per-node data of apply at displacements u (one per node) and their fitted rotations
-    // R*(u) (one per node): R_i, H_δδ,i⁻¹ (restricted to the normal at mirror nodes), c_i.
+    // R*(u) (one per node): H_δδ,i⁻¹ (restricted to the normal at mirror nodes), c_i. apply reads
+    // the rotations themselves, not a copy (72 bytes a node less): they must stay alive and
+    // unchanged until the next prepare (the Newton iterate's, during its CG).
     void prepare(std::span<const Vector3> displacement, std::span<const Matrix3> rotations);
     // y = P S P v (compact vectors, 3 per unknown node).
     void apply(std::span<const double> v, std::span<double> y);
 
     // Bytes held (for MemoryEstimate and its test): per unknown node and per node.
-    static constexpr double bytesPerUnknownNode = (9 + 6 + 3 + 1 + 3 + 3) * 8.0;
+    static constexpr double bytesPerUnknownNode = (6 + 3 + 1 + 3 + 3) * 8.0;
     static constexpr double bytesPerNode = (4 + 4 + 12) * 8.0;
 
     // Four doubles, one vector register (AVX2) or two (SSE2); lane 3 is always zero. Stored
@@ -63,7 +65,7 @@ public:
 
 private:
     const RbmProblem& problem_;
-    std::vector<std::array<double, 9>> rotation_;  // per unknown node: R_i, row-major
+    std::span<const Matrix3> rotations_;           // per node: R_i, prepare's (not owned)
     std::vector<std::array<double, 6>> inverse_;   // per unknown node: H_δδ⁻¹ (symmetric: 00 01 02 11 12 22)
     std::vector<Vector3> rotatedSum_;              // per unknown node: c_i = R_i Σ_j w d_ij
     std::vector<double> diagonal_;                 // per unknown node: D_i = Σ_j w (1 + t_j)

@@ -161,15 +161,19 @@ std::vector<double> coupledDisplacementLaplacian(const RbmProblem& problem)
     const CellNeighbourGraph& graph = problem.graph();
     const BlockPattern& pattern = problem.blockPattern();
     const std::vector<double>& weights = problem.edgeWeights();
-    const std::vector<int>& edgeBlock = problem.edgeBlock();
     std::vector<double> values(pattern.blockCount(), 0.0);
     for (int a = 0; a < problem.unknownNodeCount(); ++a) {
         const int k = problem.unknownNodes()[a];
         double diagonal = 0.0;
+        // The row's unknown neighbours, in graph order, fill its positions in order around the
+        // diagonal (RbmProblem::buildBlockPattern): no per-edge position array is needed.
+        int position = pattern.rowOffsets[a];
         for (int e = graph.offsets[k]; e < graph.offsets[k + 1]; ++e) {
             const bool unknown = problem.isUnknown(graph.neighbours[e]);
             diagonal += weights[e] * (unknown ? 2.0 : 1.0);
-            if (unknown) values[edgeBlock[e]] = -2.0 * weights[e];
+            if (!unknown) continue;
+            if (position == pattern.diagonal[a]) ++position;
+            values[position++] = -2.0 * weights[e];
         }
         values[pattern.diagonal[a]] = diagonal;
     }

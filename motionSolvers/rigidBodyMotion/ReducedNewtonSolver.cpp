@@ -77,8 +77,10 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
     if (problem_.totalUnknownNodeCount() == 0) return prescribedOnlyResult(problem_, prescribedDisplacement);
     const bool displacementTest = options_.displacementTolerance > 0.0;
     const CompactUnknowns unknowns(problem_, prescribedDisplacement);
-    const WarmStart::Start start = warmStart_.start(prescribedDisplacement, initialGuess, unknowns);
-    ReducedIterate point = start.point;
+    WarmStart::Start start = warmStart_.start(prescribedDisplacement, initialGuess, unknowns);
+    // Moved, not copied: record() below reads the start's predictor only, and a copy would keep
+    // a second iterate (displacements, rotations, gradient: 120 bytes a node) through the solve.
+    ReducedIterate point = std::move(start.point);
     const double tolerance = std::max(absoluteTolerance_, options_.relativeTolerance * point.gradientNorm);
     newtonCg_.startSolve(point.gradientNorm);
     RbmResult result;
@@ -131,6 +133,10 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
         ++result.iterations;
     }
     warmStart_.record(start, point.displacement, result.converged, initialGuess != nullptr, unknowns);
+    // The work arrays go between solves: the caller's quality check and output come next.
+    newtonCg_.releaseWork();
+    std::vector<double>().swap(negativeGradient_);
+    std::vector<double>().swap(estimatedCorrection_);
     return finishedResult(std::move(point), std::move(result), reason);
 }
 

@@ -17,6 +17,7 @@
 #include "RbmEnergy.hpp"
 #include "RbmSolverSelection.hpp"
 #include "RbmUntangling.hpp"
+#include "ReturnFreedMemory.hpp"
 #include "ScopedPetscOptions.hpp"
 #include "SubStepSplitting.hpp"
 #include "SubStepping.hpp"
@@ -100,7 +101,9 @@ struct RigidBodyMotionSolver::Impl {
     UnconstrainedPatches unconstrained;   // zeroGradient-like patches: slide on their surface or float
     std::unique_ptr<PseudoTwoDMesh> twoD; // a pseudo-3D mesh is solved on its front plane
     int dimension;
-    std::vector<Vector3> referencePoints;  // per node (2D: frame coordinates of the front plane)
+    // Per node (2D: frame coordinates of the front plane): the owner's points0 or twoD's planar
+    // points themselves, neither of which changes (a copy was 24 bytes a node).
+    const std::vector<Vector3>& referencePoints;
     std::shared_ptr<const CellNeighbourGraph> graph;
     CyclicCoupling cyclic;                  // node pairs of the cyclic patches
     std::vector<double> interfaceFactors;   // interfaceEdgeFactors(cyclic); empty without pairs
@@ -180,6 +183,7 @@ RigidBodyMotionSolver::Impl::Impl(RigidBodyMotionSolver& solver, RigidBodyMotion
 {
     const std::vector<Vector3> zero(referencePoints.size());
     initialInverted = inverted.count(zero);
+    inverted.forgetLastCheck();  // the reference mesh's is not asked again: no copy through the first solve
     updateProblem();
 }
 
@@ -332,10 +336,9 @@ double RigidBodyMotionSolver::Impl::smallestCellSizeRatio() const
 void RigidBodyMotionSolver::Impl::solveOnInitialMesh(std::span<const Vector3> target, MotionSolveReport& report)
 {
     if (!baseSolver) baseSolver = makeRbmSolver(*problem, options);
-    const int n = nodeCount();
-    const std::vector<Vector3> rest(hasState ? 0 : n);
+    // From the last step's boundary, or (empty) from the reference mesh.
     const BoundaryPath path(dimension, referencePoints, groups.offsets, groups.nodes,
-                            hasState ? std::span<const Vector3>(statePrescribed) : std::span<const Vector3>(rest), target);
+                            hasState ? std::span<const Vector3>(statePrescribed) : std::span<const Vector3>{}, target);
     const bool automatic = options.automaticSubSteps();
     const int count = automatic ? 1 : options.subSteps;
 
@@ -348,7 +351,9 @@ void RigidBodyMotionSolver::Impl::solveOnInitialMesh(std::span<const Vector3> ta
     RbmResult last;
     // Segment [from, to] of the path at depth `depth` of halving.
     auto solveSegment = [&](auto&& self, double from, double to, int depth) -> void {
-        const std::vector<Vector3> boundary = path.at(to);
+        // The path's end is the target itself, not a copy (at(1) would copy it).
+        const std::vector<Vector3> between = to < 1.0 ? path.at(to) : std::vector<Vector3>{};
+        const std::span<const Vector3> boundary = to < 1.0 ? std::span<const Vector3>(between) : target;
         RbmResult result = baseSolver->solve(boundary, guess);
         report.iterations += result.iterations;
         if (splitting.allows(depth) && !splitting.accept(depth, inverted.count(result.displacement) > initialInverted)) {
@@ -578,6 +583,7 @@ MotionSolveReport RigidBodyMotionSolver::solve()
     } else {
         if (impl.options.formulation == RbmFormulation::nonlinear) impl.solveOnInitialMesh(target, report);
         else impl.solveInIncrements(target, report);
+        returnFreedMemory();  // the solve's work arrays, before the checks and the caller's output
         impl.hasState = true;
         impl.statePrescribed = target;
         impl.untangleState(report);

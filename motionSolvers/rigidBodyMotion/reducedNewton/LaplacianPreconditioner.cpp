@@ -98,6 +98,15 @@ LaplacianPreconditioner::LaplacianPreconditioner(const RbmProblem& problem, Line
         threeVectorCycle_ = ThreeVectorMultigrid::build(pattern.rowOffsets, pattern.columns, laplacian_, "reduced");
         if (threeVectorCycle_) {
             laplacianByCycle_ = true;
+            // 3D without sliding nodes (one cycle is K⁻¹, applyInverse) only solveScalar's
+            // products read K in double precision, and the edge weights give them
+            // (laplacianTimes): K's values go, its diagonal stays. Elsewhere projectedCycleSolve's
+            // CG multiplies by K.
+            if (problem_.dimension() == 3 && !vectorSystem_ && !threeVectorCycle_->readsFinestValues()) {
+                diagonal_.resize(static_cast<std::size_t>(problem_.unknownNodeCount()));
+                for (int a = 0; a < problem_.unknownNodeCount(); ++a) diagonal_[a] = laplacian_[pattern.diagonal[a]];
+                std::vector<double>().swap(laplacian_);
+            }
             return;
         }
     }
@@ -293,16 +302,23 @@ bool LaplacianPreconditioner::solveScalar(std::span<const double> b, std::span<d
     // costs more cycles than it saves Newton work and a looser one costs CG iterations.
     constexpr double harmonicShareTolerance = 1e-2;
     constexpr int maximumIterations = 50;
-    const BlockPattern& pattern = problem_.blockPattern();
-    const int m = problem_.unknownNodeCount();
-    const std::size_t size = static_cast<std::size_t>(m);
+    const std::size_t size = static_cast<std::size_t>(problem_.unknownNodeCount());
     std::vector<double> in(3 * size, 0.0), out(3 * size);
     auto cycle = [&](std::span<const double> residual, std::span<double> result) {
         for (std::size_t a = 0; a < size; ++a) in[3 * a] = residual[a];
         threeVectorCycle_->apply(in, out);
         for (std::size_t a = 0; a < size; ++a) result[a] = out[3 * a];
     };
-    auto multiply = [&](std::span<const double> p, std::span<double> q) {
+    auto multiply = [&](std::span<const double> p, std::span<double> q) { laplacianTimes(p, q); };
+    std::array<std::vector<double>, 4> work;
+    return conjugateGradients(multiply, cycle, b, s, harmonicShareTolerance, maximumIterations, work);
+}
+
+void LaplacianPreconditioner::laplacianTimes(std::span<const double> p, std::span<double> q) const
+{
+    const BlockPattern& pattern = problem_.blockPattern();
+    const int m = problem_.unknownNodeCount();
+    if (!laplacian_.empty()) {
 #pragma omp parallel for schedule(static) if (worthThreading(pattern.columns.size()))
         for (int a = 0; a < m; ++a) {
             double sum = 0.0;
@@ -310,9 +326,32 @@ bool LaplacianPreconditioner::solveScalar(std::span<const double> b, std::span<d
                 sum += laplacian_[position] * p[pattern.columns[position]];
             q[a] = sum;
         }
-    };
-    std::array<std::vector<double>, 4> work;
-    return conjugateGradients(multiply, cycle, b, s, harmonicShareTolerance, maximumIterations, work);
+        return;
+    }
+    // The same row sums from the graph: the unknown neighbours in graph order are the row's
+    // columns in order, K_ab = −2 w_e exactly as coupledDisplacementLaplacian stores it, and the
+    // diagonal term comes where its column would (before the first neighbour b > a).
+    const CellNeighbourGraph& graph = problem_.graph();
+    const std::vector<double>& weights = problem_.edgeWeights();
+    const std::vector<int>& unknownIndex = problem_.unknownIndex();
+    const std::vector<int>& nodes = problem_.unknownNodes();
+#pragma omp parallel for schedule(static) if (worthThreading(graph.neighbours.size()))
+    for (int a = 0; a < m; ++a) {
+        const int i = nodes[a];
+        double sum = 0.0;
+        bool diagonalAdded = false;
+        for (int e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e) {
+            const int b = unknownIndex[graph.neighbours[e]];
+            if (b < 0) continue;
+            if (!diagonalAdded && b > a) {
+                sum += diagonal_[a] * p[a];
+                diagonalAdded = true;
+            }
+            sum += -2.0 * weights[e] * p[b];
+        }
+        if (!diagonalAdded) sum += diagonal_[a] * p[a];
+        q[a] = sum;
+    }
 }
 
 } // namespace rbm::motion

@@ -65,7 +65,10 @@ public:
     {
         return cholesky_ || projectedCholesky_ || (threeVectorCycle_ && !vectorSystem_ && problem_.dimension() == 3);
     }
-    // K's entries in blockPattern() order.
+    // K's entries in blockPattern() order; empty where one 3D cycle without sliding nodes is
+    // K⁻¹, holds K's finest values in single precision and nothing else reads them (released,
+    // 8 bytes a block: 210 MB at 10⁶ hexahedra). The paths that read them (sliding nodes, 2D
+    // CG with the cycle) keep them.
     const std::vector<double>& laplacian() const { return laplacian_; }
 
 private:
@@ -81,11 +84,15 @@ private:
 
     // apply without the projection onto the cyclic pairs.
     bool applyInverse(std::span<const double> r, std::span<double> z);
+    // q = K p, one value per unknown node: from laplacian_, or once it is released from the
+    // edge weights and diagonal_, summed in the same order to the same bits.
+    void laplacianTimes(std::span<const double> p, std::span<double> q) const;
 
     const RbmProblem& problem_;
     double relativeTolerance_;
     std::vector<double> pairProjected_;  // apply's projected right-hand side (cyclic pairs)
-    std::vector<double> laplacian_;  // scalar K in blockPattern() order
+    std::vector<double> laplacian_;  // scalar K in blockPattern() order (see laplacian())
+    std::vector<double> diagonal_;   // K's diagonal, once laplacian_ is released
     std::unique_ptr<BlockSystemSolver> system_;
     bool vectorSystem_ = false;            // sliding nodes: K ⊗ I projected, one system
     bool multipleRightHandSides_ = false;  // K factorised by PETSc on one rank: MatMatSolve on all components

@@ -115,7 +115,8 @@ bool NewtonCg::direction(std::span<const double> g, double forcing, const std::v
 {
     // Flexible (Polak–Ribière) preconditioned CG, so that an iterative K⁻¹ is allowed too.
     const std::size_t size = g.size();
-    // Work vectors kept between calls (no allocation and page faults per Newton step).
+    // Work vectors kept between the calls of one solve (no allocation and page faults per Newton
+    // step; releaseWork frees them at its end).
     std::vector<double>& r = cgResidual_;
     std::vector<double>& z = cgPreconditioned_;
     std::vector<double>& previousZ = cgPreviousPreconditioned_;
@@ -160,6 +161,15 @@ bool NewtonCg::direction(std::span<const double> g, double forcing, const std::v
         for (std::size_t k = 0; k < size; ++k) p[k] = z[k] + beta * p[k];
     }
     return true;  // the iteration limit: the step so far still is a descent direction
+}
+
+void NewtonCg::releaseWork()
+{
+    for (std::vector<double>* work : {&step_, &trialGradient_, &cgResidual_, &cgPreconditioned_, &cgPreviousPreconditioned_,
+                                      &cgDirection_, &cgProduct_})
+        std::vector<double>().swap(*work);
+    std::vector<Vector3>().swap(trial_);
+    std::vector<Matrix3>().swap(trialRotations_);
 }
 
 } // namespace rbm::motion

@@ -276,6 +276,7 @@ WarmStart::Start WarmStart::start(std::span<const Vector3> prescribedDisplacemen
     result.point.gradient.assign(offset.size(), 0.0);
     energy_.gradient(u, rotations, result.point.gradient);
     result.point.gradientNorm = problem_.compactNorm(result.point.gradient);
+    releaseTrial();
     result.chained = predicted.chained;
     result.boundaryReproduced = predicted.boundaryReproduced;
     result.failure = predicted.failure;
@@ -441,16 +442,25 @@ int WarmStart::subspaceStep(ReducedIterate& point, const CompactUnknowns& unknow
     unknowns.moveAlong(u, step, 1.0, trial_);
     const double trialEnergy = energy_.fitAndEnergy(trial_, trialRotations_);
     const bool accepted = slope < 0.0 && std::isfinite(trialEnergy) && trialEnergy <= energy + 1e-4 * slope;
+    if (accepted) {
+        u.swap(trial_);
+        rotations.swap(trialRotations_);
+    }
+    releaseTrial();
     if (monitor)
         std::printf("  reduced Newton, subspace of %d correction(s): energy %.12e -> %.12e%s\n", k, energy, trialEnergy,
                     accepted ? "" : ", not taken");
     if (!accepted) return 0;
-    u.swap(trial_);
-    rotations.swap(trialRotations_);
     energy = trialEnergy;
     energy_.gradient(u, rotations, g);
     point.gradientNorm = problem_.compactNorm(g);
     return k;
+}
+
+void WarmStart::releaseTrial()
+{
+    std::vector<Vector3>().swap(trial_);
+    std::vector<Matrix3>().swap(trialRotations_);
 }
 
 void WarmStart::record(const Start& start, const std::vector<Vector3>& u, bool converged, bool warm,

@@ -125,8 +125,11 @@ private:
     std::vector<std::vector<double>> recentCorrections_;
     bool correctionsFromChain_ = false;  // recentCorrections_ are a chain's (else one unchained solve's)
     std::vector<int> boundaryNeighbours_;  // unknown nodes (compact) next to a prescribed one, then -1
-    std::vector<Vector3> trial_;           // work arrays: a trial point
+    // Work arrays: a trial point, released after each use (releaseTrial): NewtonCg holds its
+    // own for the line search, and both kept would be 96 bytes a node more at the peak.
+    std::vector<Vector3> trial_;
     std::vector<Matrix3> trialRotations_;
+    void releaseTrial();
 };
 
 } // namespace rbm::motion

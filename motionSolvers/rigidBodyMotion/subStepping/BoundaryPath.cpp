@@ -11,7 +11,7 @@ namespace rbm::motion {
 BoundaryPath::BoundaryPath(int dimension, const std::vector<Vector3>& reference, const std::vector<int>& groupOffsets,
                            const std::vector<int>& groupNodes, std::span<const Vector3> from, std::span<const Vector3> to)
     : dimension_(dimension), reference_(reference), groupOffsets_(groupOffsets), groupNodes_(groupNodes),
-      from_(from.begin(), from.end()), to_(to.begin(), to.end())
+      from_(from), to_(to)
 {
     const int groupCount = static_cast<int>(groupOffsets.size()) - 1;
     motions_.resize(groupCount);
@@ -20,10 +20,10 @@ BoundaryPath::BoundaryPath(int dimension, const std::vector<Vector3>& reference,
 
 std::vector<Vector3> BoundaryPath::at(double fraction) const
 {
-    if (fraction >= 1.0) return to_;
+    if (fraction >= 1.0) return {to_.begin(), to_.end()};
     std::vector<Vector3> values(to_.size());
     for (std::size_t node = 0; node < values.size(); ++node)
-        values[node] = from_[node] + fraction * (to_[node] - from_[node]);
+        values[node] = fromOf(static_cast<int>(node)) + fraction * (to_[node] - fromOf(static_cast<int>(node)));
     for (std::size_t group = 0; group < motions_.size(); ++group) {
         const GroupMotion& motion = motions_[group];
         if (!motion.rigid) continue;
@@ -60,9 +60,9 @@ Vector3 BoundaryPath::flat(Vector3 v) const
     return v;
 }
 
-Vector3 BoundaryPath::position(int node, const std::vector<Vector3>& displacement) const
+Vector3 BoundaryPath::position(int node, std::span<const Vector3> displacement) const
 {
-    return flat(reference_[node] + displacement[node]);
+    return flat(reference_[node] + (displacement.empty() ? Vector3{} : displacement[node]));
 }
 
 void BoundaryPath::fit(int group)
@@ -114,7 +114,7 @@ void BoundaryPath::fit(int group)
         const Vector3 a = position(node, from_) - centreFrom;
         const Vector3 b = position(node, to_);
         radius = std::max(radius, norm(a));
-        largestMove = std::max(largestMove, norm(to_[node] - from_[node]));
+        largestMove = std::max(largestMove, norm(to_[node] - fromOf(node)));
         misfit = std::max(misfit, norm(centreTo + rotation * a - b));
     }
     GroupMotion& motion = motions_[group];

@@ -18,7 +18,9 @@ namespace rbm::motion {
 
 class BoundaryPath {
 public:
-    // `reference`: the nodes' reference positions (2D: frame coordinates, z ignored).
+    // `reference`: the nodes' reference positions (2D: frame coordinates, z ignored). The path
+    // reads `from` and `to` where the caller keeps them (two arrays per node fewer): they
+    // must outlive it, unchanged. An empty `from` is the reference mesh (zero everywhere).
     BoundaryPath(int dimension, const std::vector<Vector3>& reference, const std::vector<int>& groupOffsets,
                  const std::vector<int>& groupNodes, std::span<const Vector3> from, std::span<const Vector3> to);
 
@@ -40,15 +42,16 @@ private:
     };
 
     Vector3 flat(Vector3 v) const;
-    Vector3 position(int node, const std::vector<Vector3>& displacement) const;
+    Vector3 fromOf(int node) const { return from_.empty() ? Vector3{} : from_[node]; }
+    Vector3 position(int node, std::span<const Vector3> displacement) const;
     void fit(int group);
 
     int dimension_;
     const std::vector<Vector3>& reference_;
     const std::vector<int>& groupOffsets_;
     const std::vector<int>& groupNodes_;
-    std::vector<Vector3> from_;
-    std::vector<Vector3> to_;
+    std::span<const Vector3> from_;
+    std::span<const Vector3> to_;
     std::vector<GroupMotion> motions_;
 };
 
