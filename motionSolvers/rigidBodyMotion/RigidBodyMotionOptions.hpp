@@ -25,7 +25,8 @@
 //         petscOptions      "-ksp_type cg -pc_type gamg";
 //         stiffening        auto;                 // auto | none | inverseDistance (a b);
 //                                                 //     quadratic inverseDistance (a b);
-//                                                 //     power 0.8 inverseDistance (a b)
+//                                                 //     power 0.8 inverseDistance (a b);
+//                                                 //     movingAndFixed 0.75 0.2
 //         untangle          on;                   // on | off: repair cells the solve left inverted
 //         scaling           auto;                 // auto | rigid | similar | μ ≥ 0: neighbourhoods may
 //                                                 //   also scale (reducedNewton in 2D; auto: similar
@@ -74,12 +75,25 @@ enum class RbmAlgorithm { newton, localGlobal, reducedNewton };
 // `stiffening none;` switches it off; an explicit form always applies.
 inline constexpr double defaultStiffeningExponent = 0.8;
 
+// `stiffening movingAndFixed a b;`: the patches of `auto`, split by how they are prescribed,
+// each side with its own exponent: w_ij × (h_min/d_moving)^a × (h_min/d_fixed)^b, d_moving the
+// distance to the prescribed patches that move, d_fixed to the other automatic patches (fixed,
+// sliding, free). Applied as `auto` is (while every prescribed patch moves rigidly); where no
+// automatic patch moves, or every one does, `auto`'s single distance and exponent instead
+// (EdgeStiffening.hpp has the rule; docs/motionSolver.md, "Default stiffening", the measurements).
+struct SplitStiffeningExponents {
+    double moving = 0.0;
+    double fixed = 0.0;
+};
+
 struct StiffeningOptions {
     // 0: none; 1: inverseDistance; 2: quadratic inverseDistance; k: power k inverseDistance
     // (0 < k ≤ maxStiffeningExponent).
     double exponent = defaultStiffeningExponent;
     bool automaticPatches = true;      // `auto`: the solver chooses the patches; `patches` is empty
     std::vector<std::string> patches;  // patch names (or groups) as written
+    // `movingAndFixed a b` (automaticPatches, exponent the fallback's): the two exponents.
+    std::optional<SplitStiffeningExponents> split;
     int line = 0;                      // of the entry, for errors about the patch names
 
     bool enabled() const { return exponent > 0.0; }

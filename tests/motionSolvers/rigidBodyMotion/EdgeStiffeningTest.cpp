@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 namespace rbm::motion {
 namespace {
 
@@ -55,12 +57,73 @@ TEST(EdgeStiffening, AutomaticFollowsWhetherThePrescribedPatchesMoveRigidly)
     ASSERT_TRUE(automatic.automatic());
     const auto factors = automatic.factors();
     ASSERT_TRUE(factors);
-    EXPECT_FALSE(automatic.followMotion(true));   // already applied
-    EXPECT_TRUE(automatic.followMotion(false));   // a deforming patch: off
+    EXPECT_FALSE(automatic.followMotion(true, {}));   // already applied
+    EXPECT_TRUE(automatic.followMotion(false, {}));   // a deforming patch: off
     EXPECT_FALSE(automatic.factors());
-    EXPECT_FALSE(automatic.followMotion(false));
-    EXPECT_TRUE(automatic.followMotion(true));    // rigid again: the same factors, not recomputed
+    EXPECT_FALSE(automatic.followMotion(false, {}));
+    EXPECT_TRUE(automatic.followMotion(true, {}));    // rigid again: the same factors, not recomputed
     EXPECT_EQ(automatic.factors(), factors);
+}
+
+TEST(EdgeStiffening, MovingAndFixedIsTheProductOfTheFactorsTowardsTheMovingAndTheOtherPatches)
+{
+    // A 6³ box of unit cubes (h_min = 1); xMin moves, every other side is fixed.
+    const PolyMesh mesh = makeHexBox(6, 6, 6, {0, 0, 0}, {6, 6, 6});
+    const CellNeighbourGraph graph = buildCellNeighbourGraph(mesh);
+    EdgeStiffening split(optionsOf("stiffening movingAndFixed 0.75 0.2;"), mesh, mesh.points, nullptr, graph,
+                         mesh.points, 3);
+    ASSERT_TRUE(split.automatic());
+    EXPECT_FALSE(split.factors());   // which patches move is known at the first solve
+    std::vector<bool> moved(mesh.patches.size(), false);
+    moved[mesh.findPatch("xMin")] = true;
+    EXPECT_TRUE(split.followMotion(true, moved));
+    ASSERT_TRUE(split.factors());
+    EXPECT_EQ(split.movingPatches(), std::vector<Label>{mesh.findPatch("xMin")});
+    auto point = [](int i, int j, int k) { return i + 7 * (j + 7 * k); };
+    // Midpoint (1.5, 3, 3): 1.5 from xMin, 3 from the nearest other side (y, z).
+    EXPECT_NEAR(factorOf(graph, *split.factors(), point(1, 3, 3), point(2, 3, 3)),
+                std::pow(1.0 / 1.5, 0.75) * std::pow(1.0 / 3.0, 0.2), 1e-14);
+    // Midpoint (4.5, 3, 3): 4.5 from xMin, 1.5 from xMax.
+    EXPECT_NEAR(factorOf(graph, *split.factors(), point(4, 3, 3), point(5, 3, 3)),
+                std::pow(1.0 / 4.5, 0.75) * std::pow(1.0 / 1.5, 0.2), 1e-14);
+    const auto factors = split.factors();
+    EXPECT_FALSE(split.followMotion(true, moved));   // the same patches move: not recomputed
+    EXPECT_EQ(split.factors(), factors);
+    EXPECT_TRUE(split.followMotion(false, moved));   // a deforming patch: off, as auto
+    EXPECT_FALSE(split.factors());
+
+    // Nothing to tell apart (every automatic patch moves): auto's single factor, bit for bit.
+    const EdgeStiffening automatic(RigidBodyMotionOptions{}, mesh, mesh.points, nullptr, graph, mesh.points, 3);
+    EdgeStiffening allMoving(optionsOf("stiffening movingAndFixed 0.75 0.2;"), mesh, mesh.points, nullptr, graph,
+                             mesh.points, 3);
+    EXPECT_TRUE(allMoving.followMotion(true, std::vector<bool>(mesh.patches.size(), true)));
+    EXPECT_TRUE(allMoving.movingPatches().empty());
+    EXPECT_EQ(*allMoving.factors(), *automatic.factors());
+    // A second patch starts moving: the factors follow the larger moving set.
+    moved[mesh.findPatch("xMax")] = true;
+    EXPECT_TRUE(split.followMotion(true, moved));
+    EXPECT_EQ(split.movingPatches(), (std::vector<Label>{mesh.findPatch("xMin"), mesh.findPatch("xMax")}));
+    EXPECT_NEAR(factorOf(graph, *split.factors(), point(4, 3, 3), point(5, 3, 3)),
+                std::pow(1.0 / 1.5, 0.75) * std::pow(1.0 / 3.0, 0.2), 1e-14);
+}
+
+TEST(EdgeStiffening, MovingAndFixedNeedsTwoExponentsInRange)
+{
+    const auto errorOf = [](const std::string& text) {
+        try {
+            optionsOf(text);
+        } catch (const InputError& error) {
+            return std::string(error.what());
+        }
+        return std::string("no error");
+    };
+    EXPECT_EQ(optionsOf("stiffening movingAndFixed 0.75 0.2;").stiffening.split->moving, 0.75);
+    EXPECT_EQ(optionsOf("stiffening movingAndFixed 0.75 0.2;").stiffening.split->fixed, 0.2);
+    EXPECT_TRUE(optionsOf("stiffening movingAndFixed 0.75 0.2;").stiffening.automaticPatches);
+    EXPECT_NE(errorOf("stiffening movingAndFixed 0.75;").find("needs two exponents"), std::string::npos);
+    EXPECT_NE(errorOf("stiffening movingAndFixed 5 0.2;").find("must be in [0, 4], got 5"), std::string::npos);
+    EXPECT_NE(errorOf("stiffening movingAndFixed 0 0;").find("stiffens nothing"), std::string::npos);
+    EXPECT_NE(errorOf("stiffening movingAndFixed 1 1 (a);").find("unexpected '('"), std::string::npos);
 }
 
 TEST(EdgeStiffening, AnUnknownPatchIsAnErrorAtItsLineListingThePatches)

@@ -680,6 +680,41 @@ TEST(DefaultStiffening, OffWhenAPrescribedPatchDeforms)
     EXPECT_NE(explicitForm->curPoints(), deformedNone->curPoints());
 }
 
+TEST(MovingAndFixedStiffening, APatchPrescribedZeroIsFixedAndOneThatMovesIsMoving)
+{
+    // The squares with `stiffening movingAndFixed 0.75 0.2`: the inner square prescribed a turn,
+    // the outer one prescribed zero. The factors are those of the moving patch with 0.75 times
+    // those of the fixed one with 0.2 (EdgeStiffening.hpp), computed at the first solve.
+    const PolyMesh& mesh = readMesh(std::string(RBM_TEST_DATA_DIR) + "/../../tutorials/squares/rotating/constant/polyMesh");
+    const RigidTurn turn{degrees(10.0), {}, {}};
+    auto solver = makeSolver(mesh, "stiffening movingAndFixed 0.75 0.2;");
+    const auto& rbmSolver = dynamic_cast<const RigidBodyMotionSolver&>(*solver);
+    for (const Patch& patch : mesh.patches) {
+        if (patch.type == "empty") continue;
+        std::vector<Vector3> values;
+        for (Label p : patchMeshPoints(mesh, mesh.findPatch(patch.name)))
+            values.push_back(patch.name == "innerSquare" ? turn.displacement(mesh.points[p]) : Vector3{});
+        solver->setPatchDisplacement(patch.name, values);
+    }
+    EXPECT_TRUE(rbmSolver.stiffeningMovingPatches().empty());
+    const MotionSolveReport report = solver->solve();
+    EXPECT_TRUE(report.converged) << report.reason;
+    EXPECT_EQ(rbmSolver.stiffeningMovingPatches(), std::vector<Label>{mesh.findPatch("innerSquare")});
+    EXPECT_EQ(rbmSolver.stiffeningPatches(),
+              (std::vector<Label>{mesh.findPatch("innerSquare"), mesh.findPatch("outerSquare")}));
+    const auto moving = makeSolver(mesh, "stiffening power 0.75 inverseDistance (innerSquare);");
+    const auto fixed = makeSolver(mesh, "stiffening power 0.2 inverseDistance (outerSquare);");
+    const std::vector<double>& towardsMoving = dynamic_cast<const RigidBodyMotionSolver&>(*moving).stiffeningFactors();
+    const std::vector<double>& towardsFixed = dynamic_cast<const RigidBodyMotionSolver&>(*fixed).stiffeningFactors();
+    const std::vector<double>& factors = rbmSolver.stiffeningFactors();
+    ASSERT_EQ(factors.size(), towardsMoving.size());
+    for (std::size_t e = 0; e < factors.size(); ++e) EXPECT_EQ(factors[e], towardsMoving[e] * towardsFixed[e]) << e;
+    EXPECT_NE(rbmSolver.describe().find("power 0.75 inverseDistance (the moving ones of innerSquare outerSquare) × "
+                                        "power 0.2 inverseDistance (the others)"),
+              std::string::npos)
+        << rbmSolver.describe();
+}
+
 TEST(DefaultStiffening, AirfoilsAreNotWorseThanWithout)
 {
     // The boundary-layer fixture turned about its trailing edge: the default improves on
