@@ -72,12 +72,19 @@ std::vector<double> EdgeStiffening::factorsTowards(std::span<const Label> patche
 bool EdgeStiffening::followMotion(bool allPatchesRigid, const std::vector<bool>& moved)
 {
     if (!automatic_) return false;
+    if (!allPatchesRigid) {
+        if (!inEffect_) return false;
+        inEffect_ = nullptr;
+        return true;
+    }
     if (split_) {
         std::vector<Label> moving;
         std::vector<Label> fixed;
         for (Label p : patches_) (p < static_cast<Label>(moved.size()) && moved[p] ? moving : fixed).push_back(p);
         // Nothing to tell apart: auto's single distance and exponent.
         if (moving.empty() || fixed.empty()) moving.clear();
+        // Computed when first applied (a deforming motion never needs them), again when the
+        // moving patches change.
         if (!whenRigid_ || moving != moving_) {
             std::vector<double> factors;
             if (moving.empty()) {
@@ -89,14 +96,12 @@ bool EdgeStiffening::followMotion(bool allPatchesRigid, const std::vector<bool>&
             }
             whenRigid_ = std::make_shared<const std::vector<double>>(std::move(factors));
             moving_ = std::move(moving);
-            if (inEffect_) {
-                inEffect_ = allPatchesRigid ? whenRigid_ : nullptr;
-                return true;
-            }
+            inEffect_ = whenRigid_;
+            return true;
         }
     }
-    if (allPatchesRigid == (inEffect_ != nullptr)) return false;
-    inEffect_ = allPatchesRigid ? whenRigid_ : nullptr;
+    if (inEffect_) return false;
+    inEffect_ = whenRigid_;
     return true;
 }
 

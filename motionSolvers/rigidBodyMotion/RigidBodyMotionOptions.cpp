@@ -114,6 +114,7 @@ StiffeningOptions readStiffening(const io::Entry& entry)
         if (word != "auto") {
             stiffening.exponent = 0.0;
             stiffening.automaticPatches = false;
+            stiffening.split.reset();
         }
         return stiffening;
     }
@@ -138,6 +139,7 @@ StiffeningOptions readStiffening(const io::Entry& entry)
         return stiffening;
     }
     stiffening.automaticPatches = false;
+    stiffening.split.reset();
     stiffening.exponent = 1.0;
     if (word == "quadratic") {
         stiffening.exponent = 2.0;
@@ -238,7 +240,7 @@ std::string RigidBodyMotionOptions::describe() const
     text << ", weighting " << edgeWeightingName(weighting) << ", subSteps ";
     if (subSteps == 0) text << "auto";
     else text << subSteps;
-    if (stiffening.split) {
+    if (stiffening.split && *stiffening.split != defaultSplitStiffening) {
         text << ", stiffening movingAndFixed " << stiffening.split->moving << ' ' << stiffening.split->fixed;
     } else if (stiffening.enabled() && stiffening.automaticPatches) {
         text << ", stiffening auto";

@@ -1,5 +1,6 @@
-// Tests of EdgeStiffening: the edge factors (h_min / d)^k towards the listed patches, and
-// `stiffening auto`'s rule (applied while every prescribed patch moves rigidly).
+// Tests of EdgeStiffening: the edge factors (h_min / d)^k towards the listed patches,
+// `stiffening auto`'s rule (applied while every prescribed patch moves rigidly) and its split
+// into the moving and the fixed patches (movingAndFixed).
 #include "EdgeStiffening.hpp"
 
 #include "InputError.hpp"
@@ -55,13 +56,19 @@ TEST(EdgeStiffening, AutomaticFollowsWhetherThePrescribedPatchesMoveRigidly)
     const CellNeighbourGraph graph = buildCellNeighbourGraph(mesh);
     EdgeStiffening automatic(RigidBodyMotionOptions{}, mesh, mesh.points, nullptr, graph, mesh.points, 3);
     ASSERT_TRUE(automatic.automatic());
+    EXPECT_FALSE(automatic.factors());   // computed when first applied
+    std::vector<bool> moved(mesh.patches.size(), false);
+    moved[mesh.findPatch("xMax")] = true;
+    EXPECT_FALSE(automatic.followMotion(false, moved));   // a deforming patch: not computed, off
+    EXPECT_FALSE(automatic.factors());
+    EXPECT_TRUE(automatic.followMotion(true, moved));
     const auto factors = automatic.factors();
     ASSERT_TRUE(factors);
-    EXPECT_FALSE(automatic.followMotion(true, {}));   // already applied
-    EXPECT_TRUE(automatic.followMotion(false, {}));   // a deforming patch: off
+    EXPECT_FALSE(automatic.followMotion(true, moved));   // already applied
+    EXPECT_TRUE(automatic.followMotion(false, moved));   // a deforming patch: off
     EXPECT_FALSE(automatic.factors());
-    EXPECT_FALSE(automatic.followMotion(false, {}));
-    EXPECT_TRUE(automatic.followMotion(true, {}));    // rigid again: the same factors, not recomputed
+    EXPECT_FALSE(automatic.followMotion(false, moved));
+    EXPECT_TRUE(automatic.followMotion(true, moved));    // rigid again: the same factors, not recomputed
     EXPECT_EQ(automatic.factors(), factors);
 }
 
@@ -92,13 +99,15 @@ TEST(EdgeStiffening, MovingAndFixedIsTheProductOfTheFactorsTowardsTheMovingAndTh
     EXPECT_TRUE(split.followMotion(false, moved));   // a deforming patch: off, as auto
     EXPECT_FALSE(split.factors());
 
-    // Nothing to tell apart (every automatic patch moves): auto's single factor, bit for bit.
-    const EdgeStiffening automatic(RigidBodyMotionOptions{}, mesh, mesh.points, nullptr, graph, mesh.points, 3);
+    // Nothing to tell apart (every automatic patch moves): the single factor towards all of
+    // them, bit for bit.
+    const EdgeStiffening single(optionsOf("stiffening power 0.8 inverseDistance (xMin xMax yMin yMax zMin zMax);"),
+                                mesh, mesh.points, nullptr, graph, mesh.points, 3);
     EdgeStiffening allMoving(optionsOf("stiffening movingAndFixed 0.75 0.2;"), mesh, mesh.points, nullptr, graph,
                              mesh.points, 3);
     EXPECT_TRUE(allMoving.followMotion(true, std::vector<bool>(mesh.patches.size(), true)));
     EXPECT_TRUE(allMoving.movingPatches().empty());
-    EXPECT_EQ(*allMoving.factors(), *automatic.factors());
+    EXPECT_EQ(*allMoving.factors(), *single.factors());
     // A second patch starts moving: the factors follow the larger moving set.
     moved[mesh.findPatch("xMax")] = true;
     EXPECT_TRUE(split.followMotion(true, moved));
@@ -107,7 +116,7 @@ TEST(EdgeStiffening, MovingAndFixedIsTheProductOfTheFactorsTowardsTheMovingAndTh
                 std::pow(1.0 / 1.5, 0.75) * std::pow(1.0 / 3.0, 0.2), 1e-14);
 }
 
-TEST(EdgeStiffening, MovingAndFixedNeedsTwoExponentsInRange)
+TEST(EdgeStiffening, AutoIsMovingAndFixedWhichNeedsTwoExponentsInRange)
 {
     const auto errorOf = [](const std::string& text) {
         try {
@@ -117,6 +126,12 @@ TEST(EdgeStiffening, MovingAndFixedNeedsTwoExponentsInRange)
         }
         return std::string("no error");
     };
+    // The default is movingAndFixed 0.75 0.2; the explicit forms have no split.
+    EXPECT_EQ(RigidBodyMotionOptions{}.stiffening.split, defaultSplitStiffening);
+    EXPECT_EQ(optionsOf("stiffening auto;").stiffening.split, (SplitStiffeningExponents{0.75, 0.2}));
+    EXPECT_FALSE(optionsOf("stiffening none;").stiffening.split);
+    EXPECT_FALSE(optionsOf("stiffening power 0.8 inverseDistance (a);").stiffening.split);
+    EXPECT_EQ(optionsOf("stiffening movingAndFixed 1 0.4;").stiffening.split, (SplitStiffeningExponents{1.0, 0.4}));
     EXPECT_EQ(optionsOf("stiffening movingAndFixed 0.75 0.2;").stiffening.split->moving, 0.75);
     EXPECT_EQ(optionsOf("stiffening movingAndFixed 0.75 0.2;").stiffening.split->fixed, 0.2);
     EXPECT_TRUE(optionsOf("stiffening movingAndFixed 0.75 0.2;").stiffening.automaticPatches);
