@@ -195,8 +195,12 @@ void RigidBodyMotionSolver::Impl::chooseAutomaticStiffening(std::span<const Vect
         for (int k = groups.offsets[p]; !movedPatches[p] && k < groups.offsets[p + 1]; ++k)
             movedPatches[p] = !(target[groups.nodes[k]] == Vector3{});
     if (!stiffening.followMotion(rigid, movedPatches)) return;
+    // The old problem goes before the new one is built: the default's factors are first applied
+    // here, at every run's first solve, and two problems at once would raise a large run's peak.
+    std::vector<NodeConstraint> constraints = problem->constraints();
     baseSolver.reset();
-    problem = problemAround(referencePoints);
+    problem.reset();
+    problem = problemAround(referencePoints, std::move(constraints));
 }
 
 void RigidBodyMotionSolver::Impl::updateProblem()
