@@ -39,30 +39,69 @@ EdgeStiffening::EdgeStiffening(const RigidBodyMotionOptions& options, const Poly
                                const std::vector<Vector3>& points0, const PseudoTwoDMesh* twoD,
                                const CellNeighbourGraph& graph, const std::vector<Vector3>& referencePoints,
                                int dimension)
+    : mesh_(&mesh), points0_(&points0), twoD_(twoD), graph_(&graph), referencePoints_(&referencePoints),
+      dimension_(dimension)
 {
     const StiffeningOptions& stiffening = options.stiffening;
     if (!stiffening.enabled()) return;
-    std::vector<Label> patches = stiffenedPatches(options, mesh);
-    NearestSurface surface;
-    if (twoD) {
-        std::vector<Label> planarPatches;
-        for (Label p = 0; p < static_cast<Label>(twoD->planar.patches.size()); ++p)
-            if (std::find(patches.begin(), patches.end(), twoD->planar.patches[p].polyMeshPatch) != patches.end())
-                planarPatches.push_back(p);
-        surface = patchSurface(twoD->planar, planarPatches);
-    } else {
-        surface = patchSurface(mesh, points0, patches);
-    }
-    inEffect_ = std::make_shared<const std::vector<double>>(
-        stiffeningFactors(graph, referencePoints, dimension, surface, stiffening.exponent));
-    patches_ = std::move(patches);
-    if (stiffening.automaticPatches) automatic_ = inEffect_;
+    patches_ = stiffenedPatches(options, mesh);
+    exponent_ = stiffening.exponent;
+    automatic_ = stiffening.automaticPatches;
+    split_ = stiffening.split;
+    // movingAndFixed: which patches move is known at the first solve that moves one.
+    if (split_) return;
+    whenRigid_ = std::make_shared<const std::vector<double>>(factorsTowards(patches_, exponent_));
+    inEffect_ = whenRigid_;
 }
 
-bool EdgeStiffening::followMotion(bool allPatchesRigid)
+std::vector<double> EdgeStiffening::factorsTowards(std::span<const Label> patches, double exponent) const
 {
-    if (!automatic_ || allPatchesRigid == (inEffect_ != nullptr)) return false;
-    inEffect_ = allPatchesRigid ? automatic_ : nullptr;
+    NearestSurface surface;
+    if (twoD_) {
+        std::vector<Label> planarPatches;
+        for (Label p = 0; p < static_cast<Label>(twoD_->planar.patches.size()); ++p)
+            if (std::find(patches.begin(), patches.end(), twoD_->planar.patches[p].polyMeshPatch) != patches.end())
+                planarPatches.push_back(p);
+        surface = patchSurface(twoD_->planar, planarPatches);
+    } else {
+        surface = patchSurface(*mesh_, *points0_, patches);
+    }
+    return stiffeningFactors(*graph_, *referencePoints_, dimension_, surface, exponent);
+}
+
+bool EdgeStiffening::followMotion(bool allPatchesRigid, const std::vector<bool>& moved)
+{
+    if (!automatic_) return false;
+    if (!allPatchesRigid) {
+        if (!inEffect_) return false;
+        inEffect_ = nullptr;
+        return true;
+    }
+    if (split_) {
+        std::vector<Label> moving;
+        std::vector<Label> fixed;
+        for (Label p : patches_) (p < static_cast<Label>(moved.size()) && moved[p] ? moving : fixed).push_back(p);
+        // Nothing to tell apart: auto's single distance and exponent.
+        if (moving.empty() || fixed.empty()) moving.clear();
+        // Computed when first applied (a deforming motion never needs them), again when the
+        // moving patches change.
+        if (!whenRigid_ || moving != moving_) {
+            std::vector<double> factors;
+            if (moving.empty()) {
+                factors = factorsTowards(patches_, exponent_);
+            } else {
+                factors = factorsTowards(moving, split_->moving);
+                const std::vector<double> towardsFixed = factorsTowards(fixed, split_->fixed);
+                for (std::size_t e = 0; e < factors.size(); ++e) factors[e] *= towardsFixed[e];
+            }
+            whenRigid_ = std::make_shared<const std::vector<double>>(std::move(factors));
+            moving_ = std::move(moving);
+            inEffect_ = whenRigid_;
+            return true;
+        }
+    }
+    if (inEffect_) return false;
+    inEffect_ = whenRigid_;
     return true;
 }
 

@@ -1,9 +1,24 @@
 #pragma once
 // The stiffening in effect (RigidBodyMotionOptions' `stiffening`, Stiffening.hpp's factors):
-// the factor f_ij of every edge, computed once from the reference mesh, and the rule of
+// the factor f_ij of every edge, computed from the reference mesh, and the rule of
 // `stiffening auto` that applies it only while every prescribed patch moves rigidly (a body
 // moving in a fixed far field), not where a prescribed patch deforms (a bending wing), where
 // it makes the mesh worse (docs/motionSolver.md, "Default stiffening").
+//
+// `stiffening movingAndFixed a b` splits auto's patches in two: the MOVING ones, prescribed
+// patches whose prescribed displacement has been non-zero in some solve so far, and the FIXED
+// ones, every other automatic patch (prescribed zero — fixedValue (0 0 0), uniformFixedValue
+// (0 0 0) —, sliding, free). The rule reads the values the boundary conditions give, rbm's or
+// OpenFOAM's, so that it holds for any condition type (sixDoFRigidBodyDisplacement, a host's
+// setPatchDisplacement) without a list of types; a patch counts as moving from the first solve
+// it moves in. Then
+//
+//     f_ij = (h_min / d_moving)^a · (h_min / d_fixed)^b
+//
+// each factor Stiffening.hpp's with its own patches (the same exact distances, clipped at
+// h_min). Where the split leaves one side empty (no automatic patch moves, or every one does)
+// there is nothing to tell apart, and auto's single factor applies. The factors are computed
+// at the first solve that moves a patch, again only when the set of moving patches grows.
 //
 // The factors are shared with the problems built from them (one array of about 200 bytes per
 // cell in 3D instead of three).
@@ -15,6 +30,8 @@
 #include "Vector3.hpp"
 
 #include <memory>
+#include <optional>
+#include <span>
 #include <vector>
 
 namespace rbm::motion {
@@ -24,7 +41,8 @@ public:
     EdgeStiffening() = default;   // no stiffening
     // `referencePoints`: the problem's nodes (2D: planar nodes of `twoD`); `points0`: the
     // mesh's. Throws InputError (options.file, the stiffening entry's line) for a patch name
-    // that is neither a patch nor a group of `mesh`.
+    // that is neither a patch nor a group of `mesh`. Every argument must outlive this object
+    // (movingAndFixed computes its factors at the first solve).
     EdgeStiffening(const RigidBodyMotionOptions& options, const PolyMesh& mesh, const std::vector<Vector3>& points0,
                    const PseudoTwoDMesh* twoD, const CellNeighbourGraph& graph,
                    const std::vector<Vector3>& referencePoints, int dimension);
@@ -33,16 +51,35 @@ public:
     const std::shared_ptr<const std::vector<double>>& factors() const { return inEffect_; }
     // The patches the distance is measured to (indices into mesh.patches).
     const std::vector<Label>& patches() const { return patches_; }
-    // Whether `stiffening auto` decides per motion (followMotion below).
-    bool automatic() const { return automatic_ != nullptr; }
+    // movingAndFixed: the patches of the moving distance in the factors computed last (empty
+    // before the first solve that moves one, and where auto's single factor applies).
+    const std::vector<Label>& movingPatches() const { return moving_; }
+    // Whether `stiffening auto` (or movingAndFixed) decides per motion (followMotion below).
+    bool automatic() const { return automatic_; }
     // `stiffening auto`: the factors for a motion whose prescribed patches do (not) all move
-    // rigidly. Returns whether the factors in effect changed (the problem must be rebuilt).
-    bool followMotion(bool allPatchesRigid);
+    // rigidly; `moved` (per mesh patch): whether the patch has moved in some solve so far, which
+    // movingAndFixed splits the patches by. Returns whether the factors in effect changed (the
+    // problem must be rebuilt).
+    bool followMotion(bool allPatchesRigid, const std::vector<bool>& moved);
 
 private:
+    // Stiffening.hpp's factors towards `patches` (indices into mesh.patches) with `exponent`.
+    std::vector<double> factorsTowards(std::span<const Label> patches, double exponent) const;
+
     std::shared_ptr<const std::vector<double>> inEffect_;
-    std::shared_ptr<const std::vector<double>> automatic_;   // `stiffening auto`: the factors when applied
+    std::shared_ptr<const std::vector<double>> whenRigid_;   // auto: the factors when applied
     std::vector<Label> patches_;
+    std::vector<Label> moving_;
+    bool automatic_ = false;
+    std::optional<SplitStiffeningExponents> split_;
+    double exponent_ = 0.0;
+    // What the factors are computed from (movingAndFixed computes them at the first solve).
+    const PolyMesh* mesh_ = nullptr;
+    const std::vector<Vector3>* points0_ = nullptr;
+    const PseudoTwoDMesh* twoD_ = nullptr;
+    const CellNeighbourGraph* graph_ = nullptr;
+    const std::vector<Vector3>* referencePoints_ = nullptr;
+    int dimension_ = 3;
 };
 
 } // namespace rbm::motion

@@ -100,7 +100,7 @@ StiffeningOptions readStiffening(const io::Entry& entry)
     // `exponential alpha <diffusivity>` (quadratic is power 2). The exponent comes before the
     // diffusivity, not before the list: `inverseDistance 2 (a b)` would be OpenFOAM's sized list.
     const std::string valid = "auto; none; inverseDistance (patch ...); quadratic inverseDistance (patch ...); "
-                              "power k inverseDistance (patch ...)";
+                              "power k inverseDistance (patch ...); movingAndFixed a b";
     if (entry.isDictionary()) failAt(entry, "'stiffening' must be one of: " + valid);
     io::TokenStream stream = entry.stream();
     if (stream.atEnd()) failAt(entry, "'stiffening' has no value; valid forms are: " + valid);
@@ -114,10 +114,32 @@ StiffeningOptions readStiffening(const io::Entry& entry)
         if (word != "auto") {
             stiffening.exponent = 0.0;
             stiffening.automaticPatches = false;
+            stiffening.split.reset();
         }
         return stiffening;
     }
+    if (word == "movingAndFixed") {
+        // auto's patches, the moving and the fixed ones each with its own exponent.
+        SplitStiffeningExponents split;
+        for (double* exponent : {&split.moving, &split.fixed}) {
+            if (stream.atEnd() || stream.peek().kind != io::Token::Kind::Number)
+                failAt(entry, "'stiffening movingAndFixed' needs two exponents, towards the moving and towards the "
+                              "fixed patches, e.g. movingAndFixed 0.75 0.2");
+            const std::string spelled = stream.peek().text;
+            *exponent = stream.readScalar();
+            if (!(*exponent >= 0.0) || !(*exponent <= maxStiffeningExponent))
+                failAt(entry, "the exponents of 'stiffening movingAndFixed' must be in [0, " +
+                                  std::to_string(int(maxStiffeningExponent)) + "], got " + spelled);
+        }
+        if (!stream.atEnd())
+            failAt(entry, "unexpected '" + stream.peek().text + "' after 'stiffening movingAndFixed' and its exponents");
+        if (split.moving == 0.0 && split.fixed == 0.0)
+            failAt(entry, "'stiffening movingAndFixed 0 0' stiffens nothing; write 'stiffening none;'");
+        stiffening.split = split;
+        return stiffening;
+    }
     stiffening.automaticPatches = false;
+    stiffening.split.reset();
     stiffening.exponent = 1.0;
     if (word == "quadratic") {
         stiffening.exponent = 2.0;
@@ -218,7 +240,9 @@ std::string RigidBodyMotionOptions::describe() const
     text << ", weighting " << edgeWeightingName(weighting) << ", subSteps ";
     if (subSteps == 0) text << "auto";
     else text << subSteps;
-    if (stiffening.enabled() && stiffening.automaticPatches) {
+    if (stiffening.split && *stiffening.split != defaultSplitStiffening) {
+        text << ", stiffening movingAndFixed " << stiffening.split->moving << ' ' << stiffening.split->fixed;
+    } else if (stiffening.enabled() && stiffening.automaticPatches) {
         text << ", stiffening auto";
     } else if (stiffening.enabled()) {
         text << ", stiffening ";

@@ -109,6 +109,7 @@ struct RigidBodyMotionSolver::Impl {
     std::vector<double> interfaceFactors;   // interfaceEdgeFactors(cyclic); empty without pairs
     std::string boundaryFile;               // constant/polyMesh/boundary, for messages
     EdgeStiffening stiffening;
+    std::vector<bool> movedPatches;         // per mesh patch: prescribed non-zero in some solve so far
     InvertedCellCounter inverted;
     RbmUntangler untangler;
     Label initialInverted = 0;             // the reference mesh's own inverted cells
@@ -192,9 +193,18 @@ void RigidBodyMotionSolver::Impl::chooseAutomaticStiffening(std::span<const Vect
     if (!stiffening.automatic() || allZero(target)) return;
     const std::vector<Vector3> zero(target.size());
     const bool rigid = BoundaryPath(dimension, referencePoints, groups.offsets, groups.nodes, zero, target).allRigid();
-    if (!stiffening.followMotion(rigid)) return;
+    // A patch moves from the first solve that prescribes a non-zero displacement on it.
+    movedPatches.resize(groups.offsets.size() - 1, false);
+    for (std::size_t p = 0; p + 1 < groups.offsets.size(); ++p)
+        for (int k = groups.offsets[p]; !movedPatches[p] && k < groups.offsets[p + 1]; ++k)
+            movedPatches[p] = !(target[groups.nodes[k]] == Vector3{});
+    if (!stiffening.followMotion(rigid, movedPatches)) return;
+    // The old problem goes before the new one is built: the default's factors are first applied
+    // here, at every run's first solve, and two problems at once would raise a large run's peak.
+    std::vector<NodeConstraint> constraints = problem->constraints();
     baseSolver.reset();
-    problem = problemAround(referencePoints);
+    problem.reset();
+    problem = problemAround(referencePoints, std::move(constraints));
 }
 
 void RigidBodyMotionSolver::Impl::updateProblem()
@@ -507,6 +517,10 @@ const std::vector<double>& RigidBodyMotionSolver::stiffeningFactors() const
     return impl_->stiffening.factors() ? *impl_->stiffening.factors() : none;
 }
 const std::vector<Label>& RigidBodyMotionSolver::stiffeningPatches() const { return impl_->stiffening.patches(); }
+const std::vector<Label>& RigidBodyMotionSolver::stiffeningMovingPatches() const
+{
+    return impl_->stiffening.movingPatches();
+}
 Label RigidBodyMotionSolver::initialInvertedCellCount() const { return impl_->initialInverted; }
 
 std::string RigidBodyMotionSolver::describe() const
@@ -516,9 +530,16 @@ std::string RigidBodyMotionSolver::describe() const
     const std::vector<Label>& stiffened = impl_->stiffening.patches();
     if (o.stiffening.automaticPatches && !stiffened.empty()) {
         std::ostringstream stiffening;
-        stiffening << " = power " << o.stiffening.exponent << " inverseDistance (";
-        for (std::size_t k = 0; k < stiffened.size(); ++k) stiffening << (k ? " " : "") << mesh().patches[stiffened[k]].name;
-        stiffening << ") while every prescribed patch moves rigidly";
+        std::ostringstream names;
+        for (std::size_t k = 0; k < stiffened.size(); ++k) names << (k ? " " : "") << mesh().patches[stiffened[k]].name;
+        if (o.stiffening.split)
+            stiffening << " = power " << o.stiffening.split->moving << " inverseDistance (the moving ones of "
+                       << names.str() << ") × power " << o.stiffening.split->fixed
+                       << " inverseDistance (the others), or power " << o.stiffening.exponent
+                       << " inverseDistance (all) where none or all move,";
+        else
+            stiffening << " = power " << o.stiffening.exponent << " inverseDistance (" << names.str() << ")";
+        stiffening << " while every prescribed patch moves rigidly";
         text += stiffening.str();
     }
     if (o.automaticScaling) {

@@ -88,6 +88,10 @@ public:
     // The patches the stiffening measures the distance to (indices into mesh().patches; with
     // `stiffening auto`, the default, chosen by automaticStiffeningPatches); empty without stiffening.
     const std::vector<Label>& stiffeningPatches() const;
+    // `stiffening movingAndFixed`: the patches of the moving distance (EdgeStiffening.hpp's
+    // rule: prescribed non-zero in some solve so far); empty before such a solve and where the
+    // single factor of `auto` applies.
+    const std::vector<Label>& stiffeningMovingPatches() const;
     // Inverted cells of the initial mesh (sub-steps are judged against this count).
     Label initialInvertedCellCount() const;
 

@@ -1,11 +1,14 @@
-// Tests of EdgeStiffening: the edge factors (h_min / d)^k towards the listed patches, and
-// `stiffening auto`'s rule (applied while every prescribed patch moves rigidly).
+// Tests of EdgeStiffening: the edge factors (h_min / d)^k towards the listed patches,
+// `stiffening auto`'s rule (applied while every prescribed patch moves rigidly) and its split
+// into the moving and the fixed patches (movingAndFixed).
 #include "EdgeStiffening.hpp"
 
 #include "InputError.hpp"
 #include "MeshGenerators.hpp"
 
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 namespace rbm::motion {
 namespace {
@@ -53,14 +56,89 @@ TEST(EdgeStiffening, AutomaticFollowsWhetherThePrescribedPatchesMoveRigidly)
     const CellNeighbourGraph graph = buildCellNeighbourGraph(mesh);
     EdgeStiffening automatic(RigidBodyMotionOptions{}, mesh, mesh.points, nullptr, graph, mesh.points, 3);
     ASSERT_TRUE(automatic.automatic());
+    EXPECT_FALSE(automatic.factors());   // computed when first applied
+    std::vector<bool> moved(mesh.patches.size(), false);
+    moved[mesh.findPatch("xMax")] = true;
+    EXPECT_FALSE(automatic.followMotion(false, moved));   // a deforming patch: not computed, off
+    EXPECT_FALSE(automatic.factors());
+    EXPECT_TRUE(automatic.followMotion(true, moved));
     const auto factors = automatic.factors();
     ASSERT_TRUE(factors);
-    EXPECT_FALSE(automatic.followMotion(true));   // already applied
-    EXPECT_TRUE(automatic.followMotion(false));   // a deforming patch: off
+    EXPECT_FALSE(automatic.followMotion(true, moved));   // already applied
+    EXPECT_TRUE(automatic.followMotion(false, moved));   // a deforming patch: off
     EXPECT_FALSE(automatic.factors());
-    EXPECT_FALSE(automatic.followMotion(false));
-    EXPECT_TRUE(automatic.followMotion(true));    // rigid again: the same factors, not recomputed
+    EXPECT_FALSE(automatic.followMotion(false, moved));
+    EXPECT_TRUE(automatic.followMotion(true, moved));    // rigid again: the same factors, not recomputed
     EXPECT_EQ(automatic.factors(), factors);
+}
+
+TEST(EdgeStiffening, MovingAndFixedIsTheProductOfTheFactorsTowardsTheMovingAndTheOtherPatches)
+{
+    // A 6³ box of unit cubes (h_min = 1); xMin moves, every other side is fixed.
+    const PolyMesh mesh = makeHexBox(6, 6, 6, {0, 0, 0}, {6, 6, 6});
+    const CellNeighbourGraph graph = buildCellNeighbourGraph(mesh);
+    EdgeStiffening split(optionsOf("stiffening movingAndFixed 0.75 0.2;"), mesh, mesh.points, nullptr, graph,
+                         mesh.points, 3);
+    ASSERT_TRUE(split.automatic());
+    EXPECT_FALSE(split.factors());   // which patches move is known at the first solve
+    std::vector<bool> moved(mesh.patches.size(), false);
+    moved[mesh.findPatch("xMin")] = true;
+    EXPECT_TRUE(split.followMotion(true, moved));
+    ASSERT_TRUE(split.factors());
+    EXPECT_EQ(split.movingPatches(), std::vector<Label>{mesh.findPatch("xMin")});
+    auto point = [](int i, int j, int k) { return i + 7 * (j + 7 * k); };
+    // Midpoint (1.5, 3, 3): 1.5 from xMin, 3 from the nearest other side (y, z).
+    EXPECT_NEAR(factorOf(graph, *split.factors(), point(1, 3, 3), point(2, 3, 3)),
+                std::pow(1.0 / 1.5, 0.75) * std::pow(1.0 / 3.0, 0.2), 1e-14);
+    // Midpoint (4.5, 3, 3): 4.5 from xMin, 1.5 from xMax.
+    EXPECT_NEAR(factorOf(graph, *split.factors(), point(4, 3, 3), point(5, 3, 3)),
+                std::pow(1.0 / 4.5, 0.75) * std::pow(1.0 / 1.5, 0.2), 1e-14);
+    const auto factors = split.factors();
+    EXPECT_FALSE(split.followMotion(true, moved));   // the same patches move: not recomputed
+    EXPECT_EQ(split.factors(), factors);
+    EXPECT_TRUE(split.followMotion(false, moved));   // a deforming patch: off, as auto
+    EXPECT_FALSE(split.factors());
+
+    // Nothing to tell apart (every automatic patch moves): the single factor towards all of
+    // them, bit for bit.
+    const EdgeStiffening single(optionsOf("stiffening power 0.8 inverseDistance (xMin xMax yMin yMax zMin zMax);"),
+                                mesh, mesh.points, nullptr, graph, mesh.points, 3);
+    EdgeStiffening allMoving(optionsOf("stiffening movingAndFixed 0.75 0.2;"), mesh, mesh.points, nullptr, graph,
+                             mesh.points, 3);
+    EXPECT_TRUE(allMoving.followMotion(true, std::vector<bool>(mesh.patches.size(), true)));
+    EXPECT_TRUE(allMoving.movingPatches().empty());
+    EXPECT_EQ(*allMoving.factors(), *single.factors());
+    // A second patch starts moving: the factors follow the larger moving set.
+    moved[mesh.findPatch("xMax")] = true;
+    EXPECT_TRUE(split.followMotion(true, moved));
+    EXPECT_EQ(split.movingPatches(), (std::vector<Label>{mesh.findPatch("xMin"), mesh.findPatch("xMax")}));
+    EXPECT_NEAR(factorOf(graph, *split.factors(), point(4, 3, 3), point(5, 3, 3)),
+                std::pow(1.0 / 1.5, 0.75) * std::pow(1.0 / 3.0, 0.2), 1e-14);
+}
+
+TEST(EdgeStiffening, AutoIsMovingAndFixedWhichNeedsTwoExponentsInRange)
+{
+    const auto errorOf = [](const std::string& text) {
+        try {
+            optionsOf(text);
+        } catch (const InputError& error) {
+            return std::string(error.what());
+        }
+        return std::string("no error");
+    };
+    // The default is movingAndFixed 0.75 0.2; the explicit forms have no split.
+    EXPECT_EQ(RigidBodyMotionOptions{}.stiffening.split, defaultSplitStiffening);
+    EXPECT_EQ(optionsOf("stiffening auto;").stiffening.split, (SplitStiffeningExponents{0.75, 0.2}));
+    EXPECT_FALSE(optionsOf("stiffening none;").stiffening.split);
+    EXPECT_FALSE(optionsOf("stiffening power 0.8 inverseDistance (a);").stiffening.split);
+    EXPECT_EQ(optionsOf("stiffening movingAndFixed 1 0.4;").stiffening.split, (SplitStiffeningExponents{1.0, 0.4}));
+    EXPECT_EQ(optionsOf("stiffening movingAndFixed 0.75 0.2;").stiffening.split->moving, 0.75);
+    EXPECT_EQ(optionsOf("stiffening movingAndFixed 0.75 0.2;").stiffening.split->fixed, 0.2);
+    EXPECT_TRUE(optionsOf("stiffening movingAndFixed 0.75 0.2;").stiffening.automaticPatches);
+    EXPECT_NE(errorOf("stiffening movingAndFixed 0.75;").find("needs two exponents"), std::string::npos);
+    EXPECT_NE(errorOf("stiffening movingAndFixed 5 0.2;").find("must be in [0, 4], got 5"), std::string::npos);
+    EXPECT_NE(errorOf("stiffening movingAndFixed 0 0;").find("stiffens nothing"), std::string::npos);
+    EXPECT_NE(errorOf("stiffening movingAndFixed 1 1 (a);").find("unexpected '('"), std::string::npos);
 }
 
 TEST(EdgeStiffening, AnUnknownPatchIsAnErrorAtItsLineListingThePatches)

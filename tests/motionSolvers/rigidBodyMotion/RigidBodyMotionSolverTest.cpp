@@ -100,8 +100,12 @@ TEST(RigidBodyMotionSolverSelection, AcceptsOpenFoamsSolverKeywordAndDefaults)
     EXPECT_EQ(options.algorithm, RbmAlgorithm::reducedNewton);
     EXPECT_EQ(options.weighting, EdgeWeighting::inverseDistanceSquared);
     EXPECT_TRUE(options.automaticSubSteps());
-    // `stiffening auto` (issue 13.2): power 0.8 inverseDistance, the patches chosen by the solver.
+    // `stiffening auto` (issues 13.2, 23): movingAndFixed 0.75 0.2 (power 0.8 inverseDistance
+    // where the patches cannot be told apart), the patches chosen by the solver.
     EXPECT_EQ(options.stiffening.exponent, 0.8);
+    ASSERT_TRUE(options.stiffening.split);
+    EXPECT_EQ(options.stiffening.split->moving, 0.75);
+    EXPECT_EQ(options.stiffening.split->fixed, 0.2);
     EXPECT_TRUE(options.stiffening.automaticPatches);
     EXPECT_TRUE(options.stiffening.patches.empty());
     EXPECT_EQ(asRbm(*solver).dimension(), 2);
