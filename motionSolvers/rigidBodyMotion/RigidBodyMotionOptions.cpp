@@ -136,6 +136,7 @@ StiffeningOptions readStiffening(const io::Entry& entry)
         if (split.moving == 0.0 && split.fixed == 0.0)
             failAt(entry, "'stiffening movingAndFixed 0 0' stiffens nothing; write 'stiffening none;'");
         stiffening.split = split;
+        stiffening.splitWritten = true;
         return stiffening;
     }
     stiffening.automaticPatches = false;

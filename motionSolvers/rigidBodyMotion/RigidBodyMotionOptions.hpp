@@ -66,7 +66,8 @@ enum class RbmAlgorithm { newton, localGlobal, reducedNewton };
 // nearest face of the patches in the reference mesh, clipped below at h_min, the shortest
 // edge of the mesh.
 //
-// The default, `stiffening auto;`, is `movingAndFixed 0.75 0.2` (below) towards the patches the
+// The default, `stiffening auto;`, is `movingAndFixed 0.75 0.2` (below) in 2D (in 3D the
+// single exponent below: there the split made the twisted cube's mesh worse) towards the patches the
 // solver chooses (automaticStiffeningPatches in Stiffening.hpp: every patch with a boundary of
 // its own, i.e. not empty, wedge, processor, cyclic or a symmetry plane), applied to a solve whose prescribed
 // patches each move rigidly (a moving body in a fixed far field), and not to one where a
@@ -101,6 +102,9 @@ struct StiffeningOptions {
     // `auto` and `movingAndFixed a b` (automaticPatches, exponent the fallback's): the two
     // exponents; none with the explicit forms.
     std::optional<SplitStiffeningExponents> split = defaultSplitStiffening;
+    // `movingAndFixed a b` written out: the split applies in 3D too. `auto`'s split applies to
+    // planar (2D, pseudo-2D) problems only; a 3D problem takes the single exponent (EdgeStiffening).
+    bool splitWritten = false;
     int line = 0;                      // of the entry, for errors about the patch names
 
     bool enabled() const { return exponent > 0.0; }

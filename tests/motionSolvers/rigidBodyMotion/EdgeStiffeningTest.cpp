@@ -54,7 +54,9 @@ TEST(EdgeStiffening, AutomaticFollowsWhetherThePrescribedPatchesMoveRigidly)
 {
     const PolyMesh mesh = makeHexBox(4, 1, 1, {0, 0, 0}, {4, 1, 1});
     const CellNeighbourGraph graph = buildCellNeighbourGraph(mesh);
-    EdgeStiffening automatic(RigidBodyMotionOptions{}, mesh, mesh.points, nullptr, graph, mesh.points, 3);
+    // The split (auto's in 2D) computes its factors when first applied.
+    EdgeStiffening automatic(optionsOf("stiffening movingAndFixed 0.75 0.2;"), mesh, mesh.points, nullptr, graph,
+                             mesh.points, 3);
     ASSERT_TRUE(automatic.automatic());
     EXPECT_FALSE(automatic.factors());   // computed when first applied
     std::vector<bool> moved(mesh.patches.size(), false);
@@ -114,6 +116,28 @@ TEST(EdgeStiffening, MovingAndFixedIsTheProductOfTheFactorsTowardsTheMovingAndTh
     EXPECT_EQ(split.movingPatches(), (std::vector<Label>{mesh.findPatch("xMin"), mesh.findPatch("xMax")}));
     EXPECT_NEAR(factorOf(graph, *split.factors(), point(4, 3, 3), point(5, 3, 3)),
                 std::pow(1.0 / 1.5, 0.75) * std::pow(1.0 / 3.0, 0.2), 1e-14);
+}
+
+// auto's split is for planar problems: in 3D auto is the single exponent towards all its
+// patches, bit for bit, while movingAndFixed written out splits in 3D too.
+TEST(EdgeStiffening, AutoSplitsInTwoDimensionsOnlyAndAWrittenSplitEverywhere)
+{
+    const PolyMesh mesh = makeHexBox(6, 6, 6, {0, 0, 0}, {6, 6, 6});
+    const CellNeighbourGraph graph = buildCellNeighbourGraph(mesh);
+    std::vector<bool> moved(mesh.patches.size(), false);
+    moved[mesh.findPatch("xMin")] = true;
+    EdgeStiffening automatic(optionsOf("stiffening auto;"), mesh, mesh.points, nullptr, graph, mesh.points, 3);
+    const EdgeStiffening single(optionsOf("stiffening power 0.8 inverseDistance (xMin xMax yMin yMax zMin zMax);"),
+                                mesh, mesh.points, nullptr, graph, mesh.points, 3);
+    ASSERT_TRUE(automatic.factors()) << "the single exponent's factors are known at once";
+    automatic.followMotion(true, moved);
+    EXPECT_TRUE(automatic.movingPatches().empty());
+    EXPECT_EQ(*automatic.factors(), *single.factors());
+    EdgeStiffening written(optionsOf("stiffening movingAndFixed 0.75 0.2;"), mesh, mesh.points, nullptr, graph,
+                           mesh.points, 3);
+    EXPECT_TRUE(written.followMotion(true, moved));
+    EXPECT_EQ(written.movingPatches(), std::vector<Label>{mesh.findPatch("xMin")});
+    EXPECT_NE(*written.factors(), *single.factors());
 }
 
 TEST(EdgeStiffening, AutoIsMovingAndFixedWhichNeedsTwoExponentsInRange)
