@@ -3,11 +3,13 @@
 #include "BlockRowLayout.hpp"
 #include "CaseLock.hpp"
 #include "CompressedFile.hpp"
+#include "DecomposedMoveMeshRun.hpp"
 #include "FoamDictionaryWriter.hpp"
 #include "InputError.hpp"
 #include "LoadAdaptiveThreads.hpp"
 #include "MemoryEstimate.hpp"
 #include "MeshTopology.hpp"
+#include "MotionOutput.hpp"
 #include "MotionSolverRegistry.hpp"
 #include "PetscSupport.hpp"
 #include "PointPatchDisplacement.hpp"
@@ -20,6 +22,9 @@
 #include "ThreadCount.hpp"
 #include "TimeFolderWriter.hpp"
 #include "WholeFile.hpp"
+#include "WriteSchedule.hpp"
+
+#include "NumberText.hpp"
 
 #include <petscversion.h>
 
@@ -51,26 +56,6 @@ using Clock = std::chrono::steady_clock;
 double secondsSince(Clock::time_point start)
 {
     return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-double cpuSeconds()
-{
-    return static_cast<double>(std::clock()) / CLOCKS_PER_SEC;
-}
-
-std::string fixed(double value, int decimals)
-{
-    if (!std::isfinite(value)) return "n/a";
-    char buffer[64];
-    std::snprintf(buffer, sizeof buffer, "%.*f", decimals, value);
-    return buffer;
-}
-
-std::string general(double value, int digits = 6)
-{
-    char buffer[64];
-    std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
-    return buffer;
 }
 
 bool isFinite(const Vector3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
@@ -203,8 +188,10 @@ std::string usageText()
             "Options:\n"
             "  -case DIR       case folder (default: the current folder)\n"
             "  -noVTK          do not write VTK/<case>_<time>.vtu and VTK/<case>.pvd\n"
-            "  -parallel       under mpirun -np N: distribute the solve over the N ranks (each reads\n"
-            "                  the whole case; rank 0 writes)\n"
+            "  -parallel       under mpirun -np N: on a case decomposePar split into N processor\n"
+            "                  folders, rank r reads and writes processor<r> only (3D, the default\n"
+            "                  solver); on an undecomposed case, the solve is distributed over the\n"
+            "                  N ranks (each reads the whole case; rank 0 writes)\n"
             "  -writeInvalid   write steps with inverted cells or without convergence anyway\n"
             "                  (with a warning; the run goes on, the exit status is still 1)\n"
             "  -help           print this message\n"
@@ -276,8 +263,7 @@ MoveMeshRun::MoveMeshRun(MoveMeshOptions options, std::ostream& out, std::ostrea
         if (caseName_.empty() || caseName_ == "." || caseName_ == "..") caseName_ = "case";
     }
 
-    readTimeControls();
-    locateBoundaryField();
+    readTimes();
     MeshTopology topology = readCheckedMesh();   // kept for the quality checks and VTK
     dynamicMeshDict_ = io::Dictionary::readFile(caseDirectory_ / "constant" / "dynamicMeshDict");
     const fs::path boundaryFieldPath = io::resolveMaybeCompressed(boundaryFieldFile_);
@@ -326,51 +312,16 @@ MoveMeshRun::MoveMeshRun(MoveMeshOptions options, std::ostream& out, std::ostrea
                                                                 control_.timeName(control_.endTime).size())));
 }
 
-void MoveMeshRun::readTimeControls()
+void MoveMeshRun::readTimes()
 {
-    control_ = io::readControlDict(caseDirectory_);
+    RunTimes times = readRunTimes(caseDirectory_, caseDirectory_);
+    control_ = std::move(times.control);
     timePrecision_ = control_.timePrecision;
-    startTime_ = io::resolveStartTime(control_, caseDirectory_);
-    if (control_.endTime < startTime_) {
-        throw InputError(control_.file, 0,
-                         "endTime " + general(control_.endTime) + " is before the start time " + general(startTime_));
-    }
-    // Steps up to endTime within 1e-9 deltaT, or within the rounding of the times themselves
-    // when they are large against deltaT (16 ulps: 1.0000002 − 1 is 1.9999999 steps of 1e-7).
-    const double span = (control_.endTime - startTime_) / control_.deltaT;
-    const double roundingInSteps = 16.0 * std::numeric_limits<double>::epsilon() *
-                                   std::max(std::abs(startTime_), std::abs(control_.endTime)) / control_.deltaT;
-    endTolerance_ = std::max(1e-9, roundingInSteps);
-    stepCount_ = static_cast<int>(std::floor(span + endTolerance_));
-    if (span + endTolerance_ >= static_cast<double>(std::numeric_limits<int>::max())) {
-        throw InputError(control_.file, 0, "(endTime - startTime)/deltaT = " + general(span) + " steps: too many");
-    }
-
-}
-
-void MoveMeshRun::locateBoundaryField()
-{
-    // The start folder and the folder of the boundary conditions.
-    const std::vector<io::TimeDirectory> times = io::listTimeDirectories(caseDirectory_);
-    const double timeTolerance = 1e-9 * control_.deltaT;
-    startTimeName_ = control_.timeName(startTime_);
-    for (const io::TimeDirectory& time : times) {
-        if (std::abs(time.value - startTime_) <= timeTolerance) startTimeName_ = time.name;
-    }
-    for (const io::TimeDirectory& time : times) {
-        if (time.value > startTime_ + timeTolerance) break;
-        if (io::existsMaybeCompressed(caseDirectory_ / time.name / "pointDisplacement")) {
-            boundaryFieldFile_ = caseDirectory_ / time.name / "pointDisplacement";
-            break;
-        }
-    }
-    if (boundaryFieldFile_.empty()) {
-        throw InputError((caseDirectory_ / startTimeName_ / "pointDisplacement").string(), 0,
-                         "no point displacement field: rbmMoveMesh takes the boundary conditions of the motion "
-                         "from <time>/pointDisplacement of the earliest time folder up to the start time " +
-                             startTimeName_);
-    }
-
+    startTime_ = times.startTime;
+    startTimeName_ = std::move(times.startTimeName);
+    stepCount_ = times.stepCount;
+    endTolerance_ = times.endTolerance;
+    boundaryFieldFile_ = std::move(times.boundaryFieldFile);
 }
 
 MeshTopology MoveMeshRun::readCheckedMesh()
@@ -534,71 +485,14 @@ std::string MoveMeshRun::timeNameOf(double time)
     return io::timeName(time, control_.timeFormat, timePrecision_);
 }
 
-bool MoveMeshRun::isWriteTime(int step, double time)
-{
-    // OpenFOAM v1912 Time::operator++: timeStep writes every writeInterval steps; the others
-    // write when the index of the current write interval grows.
-    auto crossed = [&](double elapsed) {
-        const auto index = static_cast<long long>(elapsed / control_.writeInterval);
-        if (index > writeTimeIndex_) {
-            writeTimeIndex_ = index;
-            return true;
-        }
-        return false;
-    };
-    switch (control_.writeControl) {
-    case io::ControlDict::WriteControl::TimeStep: {
-        const long long interval = std::max<long long>(1, std::llround(control_.writeInterval));
-        return step % interval == 0;
-    }
-    case io::ControlDict::WriteControl::RunTime:
-    case io::ControlDict::WriteControl::AdjustableRunTime:
-        // The time step is fixed here (no adjustTimeStep), so adjustableRunTime writes as
-        // runTime does: label(((t − startTime) + 0.5 deltaT)/writeInterval) grows.
-        return crossed((time - startTime_) + 0.5 * control_.deltaT);
-    case io::ControlDict::WriteControl::CpuTime:
-        return crossed(cpuSeconds() - cpuStart_);
-    case io::ControlDict::WriteControl::ClockTime:
-        return crossed(std::chrono::duration<double>(Clock::now().time_since_epoch()).count() - clockStart_);
-    }
-    return false;
-}
-
 // ---- Writing ----------------------------------------------------------------------------------
 
 void MoveMeshRun::writeTime(const std::string& timeName, const std::vector<Vector3>& points)
 {
     if (!options_.writesFiles) return;
     io::TimeFolderWriter folder(caseDirectory_, timeName);
-
-    io::FoamWriteOptions pointOptions;
-    pointOptions.binary = control_.binary;
-    pointOptions.precision = control_.writePrecision;
-    pointOptions.compressed = control_.writeCompression;
-    fs::create_directories(folder.staging() / "polyMesh");
-    io::writePointsFile(folder.staging() / "polyMesh" / "points", points, timeName + "/polyMesh", pointOptions);
-
-    // pointDisplacement: the input's boundary conditions (so OpenFOAM reads the same case),
-    // with the current values of the prescribed patches (and of any patch that had a value).
-    const std::vector<Vector3>& displacement = solver_->pointDisplacement();
-    std::vector<io::PointPatchFieldEntry> boundaryField = boundaryField_.boundaryField;
-    std::vector<Vector3> patchValues;
-    for (std::size_t p = 0; p < boundaryField.size(); ++p) {
-        io::PointPatchFieldEntry& entry = boundaryField[p];
-        if (entry.type == "empty" || entry.type == "wedge") continue;
-        if (!prescribedPatches_[p] && !entry.dictionary.contains("value")) continue;
-        const std::vector<Label> labels = io::patchPointLabels(mesh_, static_cast<Label>(p));
-        patchValues.resize(labels.size());
-        for (std::size_t i = 0; i < labels.size(); ++i) patchValues[i] = displacement[static_cast<std::size_t>(labels[i])];
-        entry.dictionary.set(io::vectorFieldEntry("value", patchValues));
-    }
-    io::PointVectorFieldWriteOptions fieldOptions;
-    fieldOptions.dimensions = boundaryField_.dimensions;
-    fieldOptions.precision = std::max(control_.writePrecision, 10);   // as the points: thin cells need the digits
-    fieldOptions.compressed = control_.writeCompression;
-    fieldOptions.location = timeName;
-    io::writePointVectorField(folder.staging() / "pointDisplacement", displacement, boundaryField, fieldOptions);
-
+    stageMeshMotion(folder, timeName, mesh_, points, solver_->pointDisplacement(), boundaryField_, prescribedPatches_,
+                    control_);
     folder.commit();
 }
 
@@ -692,9 +586,7 @@ void MoveMeshRun::writeVtk(double time, const std::string& timeName, const std::
 int MoveMeshRun::run()
 {
     const Clock::time_point runStart = Clock::now();
-    cpuStart_ = cpuSeconds();
-    clockStart_ = std::chrono::duration<double>(Clock::now().time_since_epoch()).count();
-    writeTimeIndex_ = 0;
+    writeSchedule_ = std::make_unique<WriteSchedule>(control_, startTime_);
     removeInterruptedWrites();
     printHeader();
     io::JsonLinesWriter jsonLog = options_.writesFiles ? io::JsonLinesWriter(jsonLogFile(), true) : io::JsonLinesWriter();
@@ -759,7 +651,7 @@ bool MoveMeshRun::runStep(int step, std::vector<Vector3>& points, io::JsonLinesW
         record.time = time;
         record.timeName = name;
         const motion::StepVerdict verdict = assessor_->assess(solve, solver_->pointDisplacement(), points, record);
-        const bool scheduled = isWriteTime(step, time);   // called every step: it keeps state
+        const bool scheduled = writeSchedule_->isWriteTime(step, time);   // called every step: it keeps state
         if (verdict.valid ? scheduled : options_.writeInvalid && verdict.finite) {
             if (!verdict.valid) warnWritingInvalid(record);
             writeTime(name, points);
@@ -810,51 +702,9 @@ void MoveMeshRun::warnWritingInvalid(const io::StepLogRecord& record)
          << ": this mesh is NOT valid for a flow solver ***\n\n";
 }
 
-void MoveMeshRun::Extremes::add(const io::StepLogRecord& record, int step, bool finite)
-{
-    if (std::isfinite(record.worstQuality) && (!haveQuality || record.worstQuality < worstQuality)) {
-        worstQuality = record.worstQuality;
-        worstQualityTime = record.time;
-        haveQuality = true;
-    }
-    if (finite && (step == 1 || record.maxNonOrthogonality > maxNonOrthogonality)) {
-        maxNonOrthogonality = record.maxNonOrthogonality;
-        maxNonOrthogonalityTime = record.time;
-    }
-    if (finite && (step == 1 || record.maxSkewness > maxSkewness)) {
-        maxSkewness = record.maxSkewness;
-        maxSkewnessTime = record.time;
-    }
-    maxInvertedCells = std::max(maxInvertedCells, record.invertedCells);
-    maxIterations = std::max(maxIterations, record.iterations);
-    totalIterations += record.iterations;
-    if (std::isfinite(record.residual)) maxResidual = std::max(maxResidual, record.residual);
-    if (record.written) {
-        ++writtenTimes;
-        lastWritten = record.timeName;
-    }
-}
-
 void MoveMeshRun::printSummary(int stepsRun, double wallSeconds) const
 {
-    const Extremes& e = extremes_;
-    out_ << "\nEnd: " << stepsRun << " of " << stepCount_ << (stepCount_ == 1 ? " step" : " steps") << " in "
-         << fixed(wallSeconds, 2) << " s";
-    if (stepsRun > 0) out_ << " (" << fixed(wallSeconds / stepsRun, 3) << " s per step)";
-    out_ << ", " << e.writtenTimes << (e.writtenTimes == 1 ? " time" : " times") << " written";
-    if (!e.lastWritten.empty()) out_ << " (last " << e.lastWritten << ")";
-    out_ << "\n";
-    if (stepsRun > 0) {
-        out_ << "  worst quality          " << (e.haveQuality ? fixed(e.worstQuality, 4) : std::string("n/a"));
-        if (e.haveQuality) out_ << "  at time " << general(e.worstQualityTime);
-        out_ << "\n  max non-orthogonality  " << fixed(e.maxNonOrthogonality, 2) << "  at time "
-             << general(e.maxNonOrthogonalityTime) << "\n  max skewness           " << fixed(e.maxSkewness, 3)
-             << "  at time " << general(e.maxSkewnessTime) << "\n  inverted cells         " << e.maxInvertedCells
-             << " (most in one step; " << e.invalidSteps << " invalid step" << (e.invalidSteps == 1 ? "" : "s")
-             << ")\n  iterations             " << e.totalIterations << " in total, at most " << e.maxIterations
-             << " in one step; largest final residual " << general(e.maxResidual, 3) << "\n";
-    }
-    out_.flush();
+    extremes_.print(out_, stepsRun, stepCount_, wallSeconds);
 }
 
 // ---- Program --------------------------------------------------------------------------------
@@ -962,6 +812,9 @@ int moveMeshMain(int argc, char** argv, std::ostream& out, std::ostream& err)
             return exitBadInput;
         }
         applyThreadCountPolicy(size);   // OMP_NUM_THREADS, else the cores, else 1 per rank (ThreadCount.hpp)
+        // A case decomposePar split: each rank moves its processor folder (DecomposedMoveMeshRun.hpp).
+        if (isDecomposedRun(commandLine.options))
+            return runDecomposedMoveMesh(commandLine.options, PETSC_COMM_WORLD, out, err);
         if (size == 1) return runMoveMesh(commandLine.options, out, err);
         return runOnAllRanks(commandLine.options, rank, out, err);
     } catch (const UsageError& error) {

@@ -49,6 +49,9 @@
 #include "StepAssessment.hpp"
 #include "ThreadCount.hpp"
 #include "VtkWriter.hpp"
+#include "RunSummary.hpp"
+#include "RunTimes.hpp"
+#include "WriteSchedule.hpp"
 
 #include <cstdint>
 #include <filesystem>
@@ -147,15 +150,13 @@ private:
     LoadAdaptiveThreads threads_{threadCount()};
 
     void printHeader() const;
-    bool isWriteTime(int step, double time);
     std::string timeNameOf(double time);
     void writeTime(const std::string& timeName, const std::vector<Vector3>& points);
     void writeVtk(double time, const std::string& timeName, const std::vector<Vector3>& points);
-    // The constructor's parts: controlDict's times (start, step count); the start folder and
-    // the pointDisplacement file of the boundary conditions; the mesh, checked against
-    // OpenFOAM's polyMesh rules (its topology, built by the check, returned).
-    void readTimeControls();
-    void locateBoundaryField();
+    // The constructor's parts: controlDict's times (start, step count), the start folder and
+    // the pointDisplacement file of the boundary conditions (RunTimes.hpp); the mesh, checked
+    // against OpenFOAM's polyMesh rules (its topology, built by the check, returned).
+    void readTimes();
     MeshTopology readCheckedMesh();
     // nodeClasses_ and prescribedPatches_ from the solver's boundary description.
     void computeNodeClasses();
@@ -202,32 +203,11 @@ private:
     std::unique_ptr<CellFieldWorkspace> cells_;
     std::unique_ptr<io::PvdCollection> pvd_;
 
-    // Write schedule state (OpenFOAM's Time::writeTimeIndex_ for runTime/cpuTime/clockTime).
-    long long writeTimeIndex_ = 0;
-    double cpuStart_ = 0.0;
-    double clockStart_ = 0.0;
+    std::unique_ptr<WriteSchedule> writeSchedule_;   // from run()'s start
 
     std::function<void(const StepObservation&)> observer_;
 
-    // Worst values over the run, for the summary.
-    struct Extremes {
-        double worstQuality = 0.0;
-        double worstQualityTime = 0.0;
-        bool haveQuality = false;
-        double maxNonOrthogonality = 0.0;
-        double maxNonOrthogonalityTime = 0.0;
-        double maxSkewness = 0.0;
-        double maxSkewnessTime = 0.0;
-        long long maxInvertedCells = 0;
-        int invalidSteps = 0;
-        int maxIterations = 0;
-        long long totalIterations = 0;
-        double maxResidual = 0.0;
-        int writtenTimes = 0;
-        std::string lastWritten;
-        // A logged step's figures into the extremes (`finite`: its mesh has no NaN).
-        void add(const io::StepLogRecord& record, int step, bool finite);
-    } extremes_;
+    RunSummary extremes_;   // worst values over the run, for the summary
 };
 
 // Setup and run with every exception turned into an exit status and a message on `err`

@@ -43,9 +43,7 @@ const io::Dictionary& motionSolverDictionary(const io::Dictionary& dynamicMeshDi
 
 } // namespace
 
-std::unique_ptr<MotionSolver> MotionSolverRegistry::create(const PolyMesh& mesh, const io::Dictionary& dynamicMeshDict,
-                                                           const io::Dictionary* pointDisplacement,
-                                                           const std::filesystem::path& caseDirectory) const
+MotionSolverSelection selectedMotionSolver(const io::Dictionary& dynamicMeshDict)
 {
     const io::Dictionary& dictionary = motionSolverDictionary(dynamicMeshDict);
     const char* keyword = dictionary.contains("motionSolver") ? "motionSolver" : "solver";
@@ -54,17 +52,28 @@ std::unique_ptr<MotionSolver> MotionSolverRegistry::create(const PolyMesh& mesh,
                          "keyword 'motionSolver' (or 'solver') is missing: it names the motion solver");
     }
     const io::Entry& entry = dictionary.lookup(keyword);
-    const std::string name = dictionary.get<std::string>(keyword);
-    const auto factory = factories_.find(name);
+    MotionSolverSelection selection{dictionary.get<std::string>(keyword), entry.file(), entry.line(),
+                                    io::Dictionary(dictionary.name() + "/" + dictionary.get<std::string>(keyword) +
+                                                       "Coeffs",
+                                                   dictionary.file(), 0)};
+    if (const io::Dictionary* coefficients = dictionary.findDictionary(selection.name + "Coeffs"))
+        selection.coefficients = *coefficients;
+    return selection;
+}
+
+std::unique_ptr<MotionSolver> MotionSolverRegistry::create(const PolyMesh& mesh, const io::Dictionary& dynamicMeshDict,
+                                                           const io::Dictionary* pointDisplacement,
+                                                           const std::filesystem::path& caseDirectory) const
+{
+    const MotionSolverSelection selection = selectedMotionSolver(dynamicMeshDict);
+    const auto factory = factories_.find(selection.name);
     if (factory == factories_.end()) {
         std::string valid;
         for (const std::string& known : names()) valid += (valid.empty() ? "" : " ") + known;
-        throw InputError(entry.file(), entry.line(),
-                         "Unknown motionSolver type " + name + ". Valid motionSolver types are: " + valid);
+        throw InputError(selection.file, selection.line,
+                         "Unknown motionSolver type " + selection.name + ". Valid motionSolver types are: " + valid);
     }
-    const io::Dictionary* coefficients = dictionary.findDictionary(name + "Coeffs");
-    const io::Dictionary empty(dictionary.name() + "/" + name + "Coeffs", dictionary.file(), 0);
-    return factory->second(mesh, coefficients ? *coefficients : empty, pointDisplacement, caseDirectory);
+    return factory->second(mesh, selection.coefficients, pointDisplacement, caseDirectory);
 }
 
 void registerBuiltinMotionSolvers(MotionSolverRegistry& registry)

@@ -24,6 +24,17 @@ using MotionSolverFactory = std::function<std::unique_ptr<MotionSolver>(
     const PolyMesh& mesh, const io::Dictionary& coefficients, const io::Dictionary* pointDisplacement,
     const std::filesystem::path& caseDirectory)>;
 
+// The motion solver dynamicMeshDict names (`motionSolver` or `solver`, at the top level or in
+// OpenFOAM 13's `mover`), where, and its `<name>Coeffs` sub-dictionary (empty when absent).
+// Throws InputError when no solver is named.
+struct MotionSolverSelection {
+    std::string name;
+    std::string file;
+    int line = 0;
+    io::Dictionary coefficients;
+};
+MotionSolverSelection selectedMotionSolver(const io::Dictionary& dynamicMeshDict);
+
 class MotionSolverRegistry {
 public:
     void add(const std::string& name, MotionSolverFactory factory);

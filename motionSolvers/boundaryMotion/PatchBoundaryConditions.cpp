@@ -39,12 +39,13 @@ io::Dictionary defaultPointDisplacement(const std::filesystem::path& caseDirecto
 } // namespace
 
 PatchBoundaryConditions::PatchBoundaryConditions(const PolyMesh& mesh, const io::Dictionary* pointDisplacement,
-                                                 std::filesystem::path caseDirectory)
+                                                 std::filesystem::path caseDirectory,
+                                                 const PointPatchDisplacementRegistry& registry)
     : mesh_(mesh), caseDirectory_(std::move(caseDirectory))
 {
     conditions_ = readPointPatchDisplacements(pointDisplacement ? *pointDisplacement
                                                                 : defaultPointDisplacement(caseDirectory_),
-                                              mesh_, caseDirectory_, mesh_.points);
+                                              mesh_, caseDirectory_, mesh_.points, registry);
 }
 
 BoundaryDescription PatchBoundaryConditions::describe() const

@@ -20,8 +20,10 @@ public:
     // fixedValue zero (constraint patches such as empty take their own type) until a host calls
     // setPatchDisplacement. The reference points are mesh.points; the mesh must outlive this.
     // Throws rbm::InputError for bad conditions.
+    // `registry`: the condition types (decomposedPointPatchDisplacements for one rank's part).
     PatchBoundaryConditions(const PolyMesh& mesh, const io::Dictionary* pointDisplacement,
-                            std::filesystem::path caseDirectory);
+                            std::filesystem::path caseDirectory,
+                            const PointPatchDisplacementRegistry& registry = builtinPointPatchDisplacements());
 
     BoundaryDescription describe() const override;
     void initialise(std::span<const Vector3> points0, std::span<Vector3> displacement) const override;

@@ -308,15 +308,19 @@ std::unique_ptr<PointPatchDisplacement> PointPatchDisplacementRegistry::create(c
                          "Unknown patchField type " + type + " for patch " + patch.name + " in file " + where +
                              ". Valid patchField types are: " + joinNames(types()));
 
-    if (isUnsupportedConstraintPatchType(patch.type))
-        throw InputError(typeEntry->file(), typeEntry->line(),
-                         "patch " + patch.name + " has the mesh patch type " + patch.type +
-                             ", which rbm does not support for mesh motion");
-
     // OpenFOAM pointPatchField::New: a constraint patch imposes its own field type.
     const auto patchTypeEntry = entries_.find(patch.type);
     const std::string patchConstraint =
         (patchTypeEntry != entries_.end() && patchTypeEntry->second.constraintType == patch.type) ? patch.type : "";
+    // A registry that takes one of these types on (decomposedPointPatchDisplacements: the
+    // processor patches of one rank's part) lists it as a constraint type.
+    if (patchConstraint.empty() && isUnsupportedConstraintPatchType(patch.type))
+        throw InputError(typeEntry->file(), typeEntry->line(),
+                         "patch " + patch.name + " has the mesh patch type " + patch.type +
+                             ", which rbm does not support for mesh motion" +
+                             (patch.type == "processor" ? std::string(" in a serial run (a decomposed case moves with "
+                                                                      "rbmMoveMesh -parallel under mpirun)")
+                                                        : std::string()));
     const bool patchTypeOverride = patchDictionary.contains("patchType") &&
                                    patchDictionary.get<std::string>("patchType") == patch.type;
     if (!patchTypeOverride && found->second.constraintType != patchConstraint) {
@@ -400,6 +404,25 @@ const PointPatchDisplacementRegistry& builtinPointPatchDisplacements()
     static const PointPatchDisplacementRegistry registry = [] {
         PointPatchDisplacementRegistry r;
         registerBuiltinPointPatchDisplacements(r);
+        return r;
+    }();
+    return registry;
+}
+
+const PointPatchDisplacementRegistry& decomposedPointPatchDisplacements()
+{
+    static const PointPatchDisplacementRegistry registry = [] {
+        PointPatchDisplacementRegistry r;
+        registerBuiltinPointPatchDisplacements(r);
+        // The cut between two ranks' parts: its points are the shared points the distributed
+        // solve ties together (motionSolvers/distributed/), not a boundary of the domain.
+        r.add(
+            "processor",
+            [](const io::Dictionary&, const PointPatchContext& c) {
+                return std::unique_ptr<PointPatchDisplacement>(
+                    std::make_unique<Unconstrained>(c, "processor", PatchNodeClass::ignored));
+            },
+            "processor");
         return r;
     }();
     return registry;

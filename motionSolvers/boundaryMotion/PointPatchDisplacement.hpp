@@ -180,6 +180,9 @@ private:
 void registerBuiltinPointPatchDisplacements(PointPatchDisplacementRegistry& registry);
 // A registry holding the built-in types.
 const PointPatchDisplacementRegistry& builtinPointPatchDisplacements();
+// The built-in types and `processor` (ignored: the patches between the ranks' parts of a
+// decomposed case, which only a distributed run may read; a serial run refuses them).
+const PointPatchDisplacementRegistry& decomposedPointPatchDisplacements();
 
 // One boundary condition per mesh patch, in patch order, from the boundaryField entries that
 // apply to the patches (io::resolveBoundaryField: OpenFOAM's precedence of patch names, groups,

@@ -11,11 +11,12 @@ namespace {
 
 // The patches of the stiffening distance: the automatic choice and/or the names and groups
 // the user listed.
-std::vector<Label> stiffenedPatches(const RigidBodyMotionOptions& options, const PolyMesh& mesh)
+std::vector<Label> stiffenedPatches(const RigidBodyMotionOptions& options, const PolyMesh& mesh,
+                                    std::span<const Label> faceCounts)
 {
     const StiffeningOptions& stiffening = options.stiffening;
     std::vector<Label> patches;
-    if (stiffening.automaticPatches) patches = automaticStiffeningPatches(mesh);
+    if (stiffening.automaticPatches) patches = automaticStiffeningPatches(mesh, faceCounts);
     for (const std::string& name : stiffening.patches) {
         bool found = false;
         for (Label p = 0; p < static_cast<Label>(mesh.patches.size()); ++p) {
@@ -39,12 +40,32 @@ EdgeStiffening::EdgeStiffening(const RigidBodyMotionOptions& options, const Poly
                                const std::vector<Vector3>& points0, const PseudoTwoDMesh* twoD,
                                const CellNeighbourGraph& graph, const std::vector<Vector3>& referencePoints,
                                int dimension)
-    : mesh_(&mesh), points0_(&points0), twoD_(twoD), graph_(&graph), referencePoints_(&referencePoints),
-      dimension_(dimension)
+    : EdgeStiffening(options, mesh, dimension,
+                     [&mesh, &points0, twoD, &graph, &referencePoints, dimension](std::span<const Label> patches,
+                                                                                   double exponent) {
+                         NearestSurface surface;
+                         if (twoD) {
+                             std::vector<Label> planarPatches;
+                             for (Label p = 0; p < static_cast<Label>(twoD->planar.patches.size()); ++p)
+                                 if (std::find(patches.begin(), patches.end(), twoD->planar.patches[p].polyMeshPatch) !=
+                                     patches.end())
+                                     planarPatches.push_back(p);
+                             surface = patchSurface(twoD->planar, planarPatches);
+                         } else {
+                             surface = patchSurface(mesh, points0, patches);
+                         }
+                         return stiffeningFactors(graph, referencePoints, dimension, surface, exponent);
+                     })
+{
+}
+
+EdgeStiffening::EdgeStiffening(const RigidBodyMotionOptions& options, const PolyMesh& mesh, int dimension,
+                               FactorSource source, std::span<const Label> faceCounts)
+    : dimension_(dimension), factorsTowards_(std::move(source))
 {
     const StiffeningOptions& stiffening = options.stiffening;
     if (!stiffening.enabled()) return;
-    patches_ = stiffenedPatches(options, mesh);
+    patches_ = stiffenedPatches(options, mesh, faceCounts);
     exponent_ = stiffening.exponent;
     automatic_ = stiffening.automaticPatches;
     split_ = stiffening.split;
@@ -54,23 +75,8 @@ EdgeStiffening::EdgeStiffening(const RigidBodyMotionOptions& options, const Poly
     if (split_ && dimension_ == 3 && !stiffening.splitWritten) split_.reset();
     // movingAndFixed: which patches move is known at the first solve that moves one.
     if (split_) return;
-    whenRigid_ = std::make_shared<const std::vector<double>>(factorsTowards(patches_, exponent_));
+    whenRigid_ = std::make_shared<const std::vector<double>>(factorsTowards_(patches_, exponent_));
     inEffect_ = whenRigid_;
-}
-
-std::vector<double> EdgeStiffening::factorsTowards(std::span<const Label> patches, double exponent) const
-{
-    NearestSurface surface;
-    if (twoD_) {
-        std::vector<Label> planarPatches;
-        for (Label p = 0; p < static_cast<Label>(twoD_->planar.patches.size()); ++p)
-            if (std::find(patches.begin(), patches.end(), twoD_->planar.patches[p].polyMeshPatch) != patches.end())
-                planarPatches.push_back(p);
-        surface = patchSurface(twoD_->planar, planarPatches);
-    } else {
-        surface = patchSurface(*mesh_, *points0_, patches);
-    }
-    return stiffeningFactors(*graph_, *referencePoints_, dimension_, surface, exponent);
 }
 
 bool EdgeStiffening::followMotion(bool allPatchesRigid, const std::vector<bool>& moved)
@@ -92,10 +98,10 @@ bool EdgeStiffening::followMotion(bool allPatchesRigid, const std::vector<bool>&
         if (!whenRigid_ || moving != moving_) {
             std::vector<double> factors;
             if (moving.empty()) {
-                factors = factorsTowards(patches_, exponent_);
+                factors = factorsTowards_(patches_, exponent_);
             } else {
-                factors = factorsTowards(moving, split_->moving);
-                const std::vector<double> towardsFixed = factorsTowards(fixed, split_->fixed);
+                factors = factorsTowards_(moving, split_->moving);
+                const std::vector<double> towardsFixed = factorsTowards_(fixed, split_->fixed);
                 for (std::size_t e = 0; e < factors.size(); ++e) factors[e] *= towardsFixed[e];
             }
             whenRigid_ = std::make_shared<const std::vector<double>>(std::move(factors));

@@ -29,6 +29,7 @@
 #include "RigidBodyMotionOptions.hpp"
 #include "Vector3.hpp"
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
@@ -46,6 +47,15 @@ public:
     EdgeStiffening(const RigidBodyMotionOptions& options, const PolyMesh& mesh, const std::vector<Vector3>& points0,
                    const PseudoTwoDMesh* twoD, const CellNeighbourGraph& graph,
                    const std::vector<Vector3>& referencePoints, int dimension);
+    // Stiffening.hpp's factors per directed graph edge towards `patches` (indices into the
+    // mesh's patches) with `exponent`.
+    using FactorSource = std::function<std::vector<double>(std::span<const Label> patches, double exponent)>;
+    // The same rules with the factors computed elsewhere: on one rank's part of a decomposed
+    // mesh (`mesh` its local mesh, whose patches are everyone's; `faceCounts` per patch its
+    // faces over all ranks, for `stiffening auto`'s choice), from the surface gathered from all
+    // ranks (PartStiffening.hpp). Collective when `source` is.
+    EdgeStiffening(const RigidBodyMotionOptions& options, const PolyMesh& mesh, int dimension, FactorSource source,
+                   std::span<const Label> faceCounts = {});
 
     // The factors in effect, per directed edge of the graph; null: no stiffening.
     const std::shared_ptr<const std::vector<double>>& factors() const { return inEffect_; }
@@ -63,9 +73,6 @@ public:
     bool followMotion(bool allPatchesRigid, const std::vector<bool>& moved);
 
 private:
-    // Stiffening.hpp's factors towards `patches` (indices into mesh.patches) with `exponent`.
-    std::vector<double> factorsTowards(std::span<const Label> patches, double exponent) const;
-
     std::shared_ptr<const std::vector<double>> inEffect_;
     std::shared_ptr<const std::vector<double>> whenRigid_;   // auto: the factors when applied
     std::vector<Label> patches_;
@@ -73,13 +80,9 @@ private:
     bool automatic_ = false;
     std::optional<SplitStiffeningExponents> split_;
     double exponent_ = 0.0;
-    // What the factors are computed from (movingAndFixed computes them at the first solve).
-    const PolyMesh* mesh_ = nullptr;
-    const std::vector<Vector3>* points0_ = nullptr;
-    const PseudoTwoDMesh* twoD_ = nullptr;
-    const CellNeighbourGraph* graph_ = nullptr;
-    const std::vector<Vector3>* referencePoints_ = nullptr;
     int dimension_ = 3;
+    // What the factors are computed by (movingAndFixed computes them at the first solve).
+    FactorSource factorsTowards_;
 };
 
 } // namespace rbm::motion

@@ -328,7 +328,7 @@ bool NearestSurface::primitivesWithin(const Vector3& point, double radius, std::
     return true;
 }
 
-std::vector<Label> automaticStiffeningPatches(const PolyMesh& mesh)
+std::vector<Label> automaticStiffeningPatches(const PolyMesh& mesh, std::span<const Label> faceCounts)
 {
     static const std::array<std::string_view, 10> notABoundary{
         "empty",  "wedge",     "processor",  "processorCyclic", "cyclic",
@@ -336,33 +336,49 @@ std::vector<Label> automaticStiffeningPatches(const PolyMesh& mesh)
     std::vector<Label> patches;
     for (Label p = 0; p < static_cast<Label>(mesh.patches.size()); ++p) {
         const Patch& patch = mesh.patches[p];
-        if (patch.faceCount == 0) continue;
+        if ((faceCounts.empty() ? patch.faceCount : faceCounts[p]) == 0) continue;
         if (std::find(notABoundary.begin(), notABoundary.end(), patch.type) != notABoundary.end()) continue;
         patches.push_back(p);
     }
     return patches;
 }
 
-NearestSurface patchSurface(const PolyMesh& mesh, std::span<const Vector3> points, std::span<const Label> patches)
+std::vector<double> patchTriangleCoordinates(const PolyMesh& mesh, std::span<const Vector3> points,
+                                             std::span<const Label> patches)
 {
-    NearestSurface surface;
+    std::vector<double> coordinates;
+    auto add = [&](const Vector3& a, const Vector3& b, const Vector3& c) {
+        for (const Vector3* v : {&a, &b, &c}) coordinates.insert(coordinates.end(), {v->x, v->y, v->z});
+    };
     for (Label patchIndex : patches) {
         const Patch& patch = mesh.patches[patchIndex];
         for (Label f = patch.startFace; f < patch.startFace + patch.faceCount; ++f) {
             const auto face = mesh.face(f);
             if (face.size() == 3) {
-                surface.addTriangle(points[face[0]], points[face[1]], points[face[2]]);
+                add(points[face[0]], points[face[1]], points[face[2]]);
                 continue;
             }
             Vector3 centre;
             for (Label p : face) centre += points[p];
             centre /= static_cast<double>(face.size());
-            for (std::size_t k = 0; k < face.size(); ++k)
-                surface.addTriangle(points[face[k]], points[face[(k + 1) % face.size()]], centre);
+            for (std::size_t k = 0; k < face.size(); ++k) add(points[face[k]], points[face[(k + 1) % face.size()]], centre);
         }
     }
+    return coordinates;
+}
+
+NearestSurface triangleSurface(std::span<const double> c)
+{
+    NearestSurface surface;
+    for (std::size_t k = 0; k + 9 <= c.size(); k += 9)
+        surface.addTriangle({c[k], c[k + 1], c[k + 2]}, {c[k + 3], c[k + 4], c[k + 5]}, {c[k + 6], c[k + 7], c[k + 8]});
     surface.build();
     return surface;
+}
+
+NearestSurface patchSurface(const PolyMesh& mesh, std::span<const Vector3> points, std::span<const Label> patches)
+{
+    return triangleSurface(patchTriangleCoordinates(mesh, points, patches));
 }
 
 NearestSurface patchSurface(const PlanarMesh& planar, std::span<const Label> planarPatches)
@@ -382,11 +398,8 @@ NearestSurface patchSurface(const PlanarMesh& planar, std::span<const Label> pla
     return surface;
 }
 
-std::vector<double> stiffeningFactors(const CellNeighbourGraph& graph, std::span<const Vector3> points, int dimension,
-                                      const NearestSurface& surface, double exponent)
+double shortestGraphEdge(const CellNeighbourGraph& graph, std::span<const Vector3> points, int dimension)
 {
-    std::vector<double> factors(graph.neighbours.size(), 1.0);
-    if (exponent == 0.0 || surface.empty()) return factors;
     auto position = [&](Label node) {
         Vector3 p = points[node];
         if (dimension == 2) p.z = 0.0;
@@ -399,6 +412,21 @@ std::vector<double> stiffeningFactors(const CellNeighbourGraph& graph, std::span
     for (Label i = 0; i < nodeCount; ++i)
         for (Label e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e)
             shortest = std::min(shortest, norm(position(graph.neighbours[e]) - position(i)));
+    return shortest;
+}
+
+std::vector<double> stiffeningFactors(const CellNeighbourGraph& graph, std::span<const Vector3> points, int dimension,
+                                      const NearestSurface& surface, double exponent, double shortestEdge)
+{
+    std::vector<double> factors(graph.neighbours.size(), 1.0);
+    if (exponent == 0.0 || surface.empty()) return factors;
+    auto position = [&](Label node) {
+        Vector3 p = points[node];
+        if (dimension == 2) p.z = 0.0;
+        return p;
+    };
+    const Label nodeCount = graph.nodeCount();
+    const double shortest = std::isnan(shortestEdge) ? shortestGraphEdge(graph, points, dimension) : shortestEdge;
     if (!(shortest > 0.0) || !std::isfinite(shortest)) return factors;
     // Each edge pair i < j is set by row i, in both directions: every factor has one writer.
     auto setFactor = [&](Label i, Label e, double distanceToSurface) {

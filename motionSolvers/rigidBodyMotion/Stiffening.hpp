@@ -24,6 +24,7 @@
 #include "PolyMesh.hpp"
 #include "Vector3.hpp"
 
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -106,8 +107,10 @@ NearestSurface patchSurface(const PlanarMesh& planar, std::span<const Label> pla
 // `cyclicACMI`/`cyclicSlip` (coupled to another patch) or `symmetryPlane`/`symmetry` (a mirror:
 // the mirrored domain has no boundary there, and a one-layer 3D mesh between two mirror planes
 // must move as its 2D form does): moving, fixed, free and slip patches alike.
-// Indices into mesh.patches, in order.
-std::vector<Label> automaticStiffeningPatches(const PolyMesh& mesh);
+// Indices into mesh.patches, in order. `faceCounts`: per patch, its faces in the whole mesh when
+// `mesh` is one rank's part (a patch with no face here may have faces on other ranks); empty:
+// the mesh's own.
+std::vector<Label> automaticStiffeningPatches(const PolyMesh& mesh, std::span<const Label> faceCounts = {});
 
 // f_ij per directed edge of `graph` (same order as graph.neighbours), see the file comment.
 // 2D (dimension 2) uses the x and y of the points only. exponent 0 gives all ones; 1 and 2
@@ -117,7 +120,18 @@ std::vector<Label> automaticStiffeningPatches(const PolyMesh& mesh);
 // farthest midpoint), found once; each midpoint's distance is the minimum over those, the
 // same number a search of the whole hierarchy gives (tested against brute force). In 3D each
 // midpoint is searched on its own (cheaper there; Stiffening.cpp has the figures).
+// `shortestEdge`: h_min when the graph is one rank's part of a larger mesh (the shortest edge
+// over all ranks); NaN: the graph's own shortest edge.
 std::vector<double> stiffeningFactors(const CellNeighbourGraph& graph, std::span<const Vector3> points, int dimension,
-                                      const NearestSurface& surface, double exponent);
+                                      const NearestSurface& surface, double exponent,
+                                      double shortestEdge = std::numeric_limits<double>::quiet_NaN());
+// The shortest edge of the graph (the h_min of the factors above).
+double shortestGraphEdge(const CellNeighbourGraph& graph, std::span<const Vector3> points, int dimension);
+// The triangles patchSurface makes of the faces of the given 3D patches, as 9 coordinates
+// each (a, b, c), for a surface gathered from the parts of a decomposed mesh.
+std::vector<double> patchTriangleCoordinates(const PolyMesh& mesh, std::span<const Vector3> points,
+                                             std::span<const Label> patches);
+// The surface of such triangles (9 coordinates each), built.
+NearestSurface triangleSurface(std::span<const double> coordinates);
 
 } // namespace rbm::motion

@@ -13,7 +13,8 @@ namespace rbm::motion {
 
 namespace {
 
-// -rbm_reduced_correction_memory N and -rbm_reduced_harmonic_basis false override the options.
+// -rbm_reduced_correction_memory N, -rbm_reduced_harmonic_basis false and
+// -rbm_reduced_turned_start false override the options.
 // A part (RbmProblem::isPart) has neither the turned start nor the harmonic basis: both look at
 // the whole prescribed boundary.
 WarmStartOptions withPetscOptions(WarmStartOptions options, const RbmProblem& problem)
@@ -25,6 +26,9 @@ WarmStartOptions withPetscOptions(WarmStartOptions options, const RbmProblem& pr
     PetscBool harmonicBasis = options.harmonicBasis ? PETSC_TRUE : PETSC_FALSE;
     RBM_CHECK_PETSC(PetscOptionsGetBool(nullptr, "rbm_reduced_", "-harmonic_basis", &harmonicBasis, nullptr));
     options.harmonicBasis = harmonicBasis == PETSC_TRUE;
+    PetscBool turnedStart = options.turnedStart ? PETSC_TRUE : PETSC_FALSE;
+    RBM_CHECK_PETSC(PetscOptionsGetBool(nullptr, "rbm_reduced_", "-turned_start", &turnedStart, nullptr));
+    options.turnedStart = turnedStart == PETSC_TRUE && !problem.isPart();
     return options;
 }
 
