@@ -100,6 +100,12 @@ public:
     const MeshGeometry& geometryAt(std::span<const Vector3> points);
     // The geometry computed by the last evaluate() (or evaluateStep() on its 3D path).
     const MeshGeometry& geometry() const { return geometry_; }
+    // The per-face measures behind the last evaluateStep()'s two checkMesh extremes on its 3D
+    // path (not an extrusion's closed forms): faceCosine per internal face, faceSkew per face,
+    // a boundary face's with checkMesh's mirror cell. A part of a decomposed mesh
+    // (motionSolvers/distributed/PartQuality) needs them without its processor faces, which are
+    // boundary faces here but internal faces of the whole mesh.
+    const CheckMeshExtremesWorkspace& stepFaceMeasures() const { return extremesWorkspace_; }
     bool isTwoD() const { return twoD_ != nullptr; }
     // Gives back the per-face and per-cell work arrays (the geometry among them; the next
     // geometryAt() computes it again). Between the time steps of a run they would sit beside
