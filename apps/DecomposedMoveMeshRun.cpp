@@ -7,12 +7,12 @@
 #include "MeshTopology.hpp"
 #include "MotionOutput.hpp"
 #include "MotionSolverRegistry.hpp"
+#include "PartQuality.hpp"
 #include "PartRigidBodyMotion.hpp"
 #include "PatchBoundaryConditions.hpp"
 #include "PetscSupport.hpp"
 #include "RunSummary.hpp"
 #include "RunTimes.hpp"
-#include "StepAssessment.hpp"
 #include "ThreadCount.hpp"
 #include "TimeFolderWriter.hpp"
 #include "WriteSchedule.hpp"
@@ -48,22 +48,6 @@ bool onEveryRank(bool mine, MPI_Comm communicator)
     int value = mine ? 1 : 0;
     RBM_CHECK_PETSC(MPI_Allreduce(MPI_IN_PLACE, &value, 1, MPI_INT, MPI_LAND, communicator));
     return value != 0;
-}
-
-// The whole mesh's step figures from every rank's own cells: the smallest quality, the largest
-// non-orthogonality and skewness, the inverted cells summed.
-StepQuality reducedOverRanks(StepQuality local, MPI_Comm communicator)
-{
-    double largest[3] = {-local.worstCellQuality, local.maxNonOrthogonality, local.maxSkewness};
-    RBM_CHECK_PETSC(MPI_Allreduce(MPI_IN_PLACE, largest, 3, MPI_DOUBLE, MPI_MAX, communicator));
-    long long inverted = local.invertedCellCount;
-    RBM_CHECK_PETSC(MPI_Allreduce(MPI_IN_PLACE, &inverted, 1, MPI_LONG_LONG, MPI_SUM, communicator));
-    StepQuality whole;
-    whole.worstCellQuality = -largest[0];
-    whole.maxNonOrthogonality = largest[1];
-    whole.maxSkewness = largest[2];
-    whole.invertedCellCount = static_cast<Label>(inverted);
-    return whole;
 }
 
 // One rank's processor folder as it reads it: everything before the first collective step.
@@ -164,7 +148,7 @@ private:
     std::optional<io::CaseLock> lock_;
     ProcessorCase local_;
     std::unique_ptr<motion::PartRigidBodyMotion> motion_;
-    std::unique_ptr<motion::StepAssessor> assessor_;
+    std::unique_ptr<motion::PartQuality> quality_;   // the whole mesh's figures, on every rank
     std::unique_ptr<WriteSchedule> schedule_;
     io::JsonLinesWriter jsonLog_;
     RunSummary summary_;
@@ -234,9 +218,9 @@ std::vector<Vector3> DecomposedRun::movedPoints() const
 
 StepQuality DecomposedRun::quality(const std::vector<Vector3>& points)
 {
-    const StepQuality local = assessor_->evaluateStep(points);
-    assessor_->releaseWorkspaces();
-    return reducedOverRanks(local, communicator_);
+    const StepQuality whole = quality_->evaluateStep(points);
+    quality_->releaseWorkspaces();
+    return whole;
 }
 
 int DecomposedRun::evaluateConditions(double time, const std::string& name)
@@ -376,7 +360,7 @@ int DecomposedRun::run()
         motion_ = std::make_unique<motion::PartRigidBodyMotion>(communicator_, local_.processor.mesh,
                                                                  local_.processor.pointProcAddressing, local_.boundary,
                                                                  local_.solver.coefficients);
-        assessor_ = std::make_unique<motion::StepAssessor>(local_.processor.mesh);
+        quality_ = std::make_unique<motion::PartQuality>(local_.processor.mesh, communicator_);
         for (const std::string& name : io::removeStaleStagingFolders(local_.folder))
             rankError() << "removed " << name << ", the unfinished time folder of an interrupted run\n";
         if (isRankZero()) jsonLog_ = io::JsonLinesWriter(jsonLogFile(), true);

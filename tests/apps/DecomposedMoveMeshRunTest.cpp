@@ -5,8 +5,8 @@
 // lines), cut by decomposePar along staircases through the sides, the edges and the top.
 //
 //  - Every point of every processor folder ends near the serial run's point (pointProcAddressing),
-//    at both written times, with the same validity and the same worst quality and inverted cells
-//    in the step lines: with the defaults within 2.5e-6 of its shortest edge (each solve stops
+//    at both written times, with the same validity and the same worst quality, non-orthogonality
+//    (its worst faces lie between processors) and inverted cells in the step lines: with the defaults within 2.5e-6 of its shortest edge (each solve stops
 //    within displacementTolerance 1e-6 of the minimum, along a different path), and with
 //    displacementTolerance 1e-10 within 1e-8 (the same minimum).
 //  - Bad input on one processor stops every rank with exit status 2, naming that processor's
@@ -57,13 +57,14 @@ ProgramRun runDecomposed(const fs::path& caseDir, int ranks)
 
 ProgramRun runSerial(const fs::path& caseDir) { return runCommand(std::string(RBM_MOVE_MESH) + " -case " + caseDir.string() + " -noVTK"); }
 
-// "worst quality  0.7658" and "inverted 0" of each step line.
+// The worst quality, the max non-orthogonality (its faces between processors included) and the
+// inverted cells of each step line.
 std::vector<std::string> qualityFigures(const std::string& output)
 {
     std::vector<std::string> figures;
-    const std::regex line(R"(Time = \S+.*worst quality\s+(\S+).*inverted (\d+))");
+    const std::regex line(R"(Time = \S+.*worst quality\s+(\S+)\s+max non-orthogonality\s+(\S+)\s+inverted (\d+))");
     for (std::sregex_iterator it(output.begin(), output.end(), line), end; it != end; ++it)
-        figures.push_back((*it)[1].str() + " / " + (*it)[2].str());
+        figures.push_back((*it)[1].str() + " / " + (*it)[2].str() + "° / " + (*it)[3].str());
     return figures;
 }
 
