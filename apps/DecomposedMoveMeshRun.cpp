@@ -122,6 +122,8 @@ public:
 private:
     // Setup's local phase: the lock, the processor folder count, every rank's files. Agreed.
     int readEverything();
+    // Every processor folder's start time the same (exit status 2 otherwise). Collective.
+    int checkSameStartTime();
     void printHeader();
     bool runStep(int step, int& exitStatus);
     // The two-phase write of `name` on every rank; false (with the message said) when some
@@ -179,8 +181,23 @@ int DecomposedRun::readEverything()
         status = exitRunFailed;
     }
     status = agreed(status, communicator_);
+    if (status == exitSuccess) status = checkSameStartTime();
     if (status != exitSuccess && isRankZero()) err_ << "rbmMoveMesh: nothing was written.\n";
     return status;
+}
+
+int DecomposedRun::checkSameStartTime()
+{
+    // startFrom latestTime picks each processor folder's own latest time: an interrupted
+    // earlier run may have left them apart.
+    double range[2] = {local_.times.startTime, -local_.times.startTime};
+    RBM_CHECK_PETSC(MPI_Allreduce(MPI_IN_PLACE, range, 2, MPI_DOUBLE, MPI_MAX, communicator_));
+    if (range[0] == -range[1]) return exitSuccess;
+    if (isRankZero())
+        err_ << "rbmMoveMesh: " << options_.caseDirectory.string() << ": the processor folders start at different times ("
+             << general(-range[1]) << " to " << general(range[0])
+             << "): remove the later times from the folders that have them, or give startTime\n";
+    return exitBadInput;
 }
 
 void DecomposedRun::printHeader()
@@ -365,6 +382,8 @@ int DecomposedRun::run()
             rankError() << "removed " << name << ", the unfinished time folder of an interrupted run\n";
         if (isRankZero()) jsonLog_ = io::JsonLinesWriter(jsonLogFile(), true);
         printHeader();
+        if (isRankZero())
+            for (const std::string& warning : motion_->warnings()) err_ << "rbmMoveMesh: warning: " << warning << '\n';
         const StepQuality initial = quality(movedPoints());
         if (isRankZero())
             out_ << "Initial mesh (time " << local_.times.startTimeName << "): worst quality "

@@ -8,10 +8,7 @@
 
 namespace rbm::motion {
 
-namespace {
-
-// Whether `points` lie in one plane (3D) or on one line (2D, z ignored), to 1e-6 of `scale`.
-bool flat(const std::vector<Vector3>& points, int dimension, double scale)
+bool pointsAreFlat(const std::vector<Vector3>& points, int dimension, double scale)
 {
     if (points.size() < 3) return true;
     const Vector3 origin = points.front();
@@ -46,6 +43,9 @@ bool flat(const std::vector<Vector3>& points, int dimension, double scale)
                        [&](const Vector3& p) { return std::abs(dot(p - origin, normal)) <= tolerance; });
 }
 
+namespace {
+
+
 double shortestEdge(const std::vector<Vector3>& points, const CellNeighbourGraph& graph, const std::vector<int>& nodes)
 {
     double shortest = std::numeric_limits<double>::infinity();
@@ -78,7 +78,7 @@ CurvedPatchProjection::CurvedPatchProjection(const PolyMesh& mesh, const std::ve
         patchNodes.erase(std::unique(patchNodes.begin(), patchNodes.end()), patchNodes.end());
         std::vector<Vector3> positions;
         for (int node : patchNodes) positions.push_back(reference[node]);
-        if (flat(positions, problem.dimension(), shortestEdge(reference, problem.graph(), patchNodes))) continue;
+        if (pointsAreFlat(positions, problem.dimension(), shortestEdge(reference, problem.graph(), patchNodes))) continue;
         CurvedPatch curved;
         curved.patch = patch;
         // In 3D, the patch's own point normals tell its tangent plane from the other plane of a

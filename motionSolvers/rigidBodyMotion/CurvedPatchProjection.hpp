@@ -23,6 +23,9 @@
 
 namespace rbm::motion {
 
+// Whether `points` lie in one plane (3D) or on one line (2D, z ignored), to 1e-6 of `scale`.
+bool pointsAreFlat(const std::vector<Vector3>& points, int dimension, double scale);
+
 class CurvedPatchProjection {
 public:
     CurvedPatchProjection() = default;   // nothing to project

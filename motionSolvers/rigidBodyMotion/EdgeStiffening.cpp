@@ -4,6 +4,7 @@
 #include "Stiffening.hpp"
 
 #include <algorithm>
+#include <sstream>
 
 namespace rbm::motion {
 
@@ -113,6 +114,23 @@ bool EdgeStiffening::followMotion(bool allPatchesRigid, const std::vector<bool>&
     if (inEffect_) return false;
     inEffect_ = whenRigid_;
     return true;
+}
+
+std::string EdgeStiffening::describeAutomatic(const RigidBodyMotionOptions& options, const PolyMesh& mesh) const
+{
+    if (!options.stiffening.automaticPatches || patches_.empty()) return {};
+    std::ostringstream text;
+    std::ostringstream names;
+    for (std::size_t k = 0; k < patches_.size(); ++k) names << (k ? " " : "") << mesh.patches[patches_[k]].name;
+    // split_ is set where the split applies (auto's in 2D only, a written movingAndFixed everywhere).
+    if (split_)
+        text << " = power " << split_->moving << " inverseDistance (the moving ones of " << names.str()
+             << ") × power " << split_->fixed << " inverseDistance (the others), or power " << exponent_
+             << " inverseDistance (all) where none or all move,";
+    else
+        text << " = power " << exponent_ << " inverseDistance (" << names.str() << ")";
+    text << " while every prescribed patch moves rigidly";
+    return text.str();
 }
 
 } // namespace rbm::motion

@@ -33,6 +33,7 @@
 #include <memory>
 #include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 namespace rbm::motion {
@@ -71,6 +72,10 @@ public:
     // movingAndFixed splits the patches by. Returns whether the factors in effect changed (the
     // problem must be rebuilt).
     bool followMotion(bool allPatchesRigid, const std::vector<bool>& moved);
+    // What `stiffening auto` chose, in words, to follow options.describe()'s "stiffening auto":
+    // " = power 0.8 inverseDistance (patches) while every prescribed patch moves rigidly" (or
+    // the split's words); empty for other stiffening entries or without patches.
+    std::string describeAutomatic(const RigidBodyMotionOptions& options, const PolyMesh& mesh) const;
 
 private:
     std::shared_ptr<const std::vector<double>> inEffect_;

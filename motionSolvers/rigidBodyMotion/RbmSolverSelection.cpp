@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 namespace rbm::motion {
 
@@ -107,6 +108,17 @@ std::unique_ptr<RbmSolver> makeRbmSolver(const RbmProblem& problem, const RigidB
     }
     if (options.maxIterations) newton.maximumIterations = *options.maxIterations;
     return std::make_unique<CoupledNewtonSolver>(problem, newton);
+}
+
+std::string describeAutomaticScaling(const RigidBodyMotionOptions& options, int dimension)
+{
+    if (!options.automaticScaling) return {};
+    const NeighbourhoodScaling scaling = effectiveScaling(options, dimension);
+    std::ostringstream text;
+    text << ", scaling auto = ";
+    if (scaling.rigid()) text << "rigid";
+    else text << scaling.stiffness;
+    return text.str();
 }
 
 } // namespace rbm::motion

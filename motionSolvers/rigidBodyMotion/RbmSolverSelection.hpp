@@ -20,6 +20,7 @@
 #include "RigidBodyMotionOptions.hpp"
 
 #include <memory>
+#include <string>
 
 namespace rbm::motion {
 
@@ -38,6 +39,9 @@ inline constexpr double automaticScaleStiffness = 0.3;
 // automaticScaleStiffness for the default solver (reducedNewton) in 2D and rigid elsewhere;
 // an explicit value as written (rbm::InputError for a scaling other than rigid in 3D).
 NeighbourhoodScaling effectiveScaling(const RigidBodyMotionOptions& options, int dimension);
+// ", scaling auto = rigid" (or its stiffness) for `scaling auto`, in a solver's description;
+// empty for a scaling written out.
+std::string describeAutomaticScaling(const RigidBodyMotionOptions& options, int dimension);
 
 // The solver for `problem` (which must outlive it).
 std::unique_ptr<RbmSolver> makeRbmSolver(const RbmProblem& problem, const RigidBodyMotionOptions& options);

@@ -526,31 +526,7 @@ Label RigidBodyMotionSolver::initialInvertedCellCount() const { return impl_->in
 std::string RigidBodyMotionSolver::describe() const
 {
     const RigidBodyMotionOptions& o = impl_->options;
-    std::string text = o.describe();
-    const std::vector<Label>& stiffened = impl_->stiffening.patches();
-    if (o.stiffening.automaticPatches && !stiffened.empty()) {
-        std::ostringstream stiffening;
-        std::ostringstream names;
-        for (std::size_t k = 0; k < stiffened.size(); ++k) names << (k ? " " : "") << mesh().patches[stiffened[k]].name;
-        if (o.stiffening.split)
-            stiffening << " = power " << o.stiffening.split->moving << " inverseDistance (the moving ones of "
-                       << names.str() << ") × power " << o.stiffening.split->fixed
-                       << " inverseDistance (the others), or power " << o.stiffening.exponent
-                       << " inverseDistance (all) where none or all move,";
-        else
-            stiffening << " = power " << o.stiffening.exponent << " inverseDistance (" << names.str() << ")";
-        stiffening << " while every prescribed patch moves rigidly";
-        text += stiffening.str();
-    }
-    if (o.automaticScaling) {
-        const NeighbourhoodScaling scaling = effectiveScaling(o, impl_->dimension);
-        std::ostringstream auto_;
-        auto_ << ", scaling auto = ";
-        if (scaling.rigid()) auto_ << "rigid";
-        else auto_ << scaling.stiffness;
-        text += auto_.str();
-    }
-    return text;
+    return o.describe() + impl_->stiffening.describeAutomatic(o, mesh()) + describeAutomaticScaling(o, impl_->dimension);
 }
 
 std::string RigidBodyMotionSolver::invertedStepAdvice() const

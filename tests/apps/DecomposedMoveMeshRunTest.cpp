@@ -85,6 +85,12 @@ void checkAgainstSerial(int ranks, const std::string& coefficients, double bound
     ASSERT_EQ(serial.exitStatus, 0) << serial.output;
     EXPECT_EQ(qualityFigures(decomposed.output), qualityFigures(serial.output)) << decomposed.output << serial.output;
     ASSERT_EQ(qualityFigures(serial.output).size(), 2u) << serial.output;
+    // The same solver described alike; in 3D `stiffening auto` is the single exponent.
+    const std::string stiffening =
+        "stiffening auto = power 0.8 inverseDistance (bottom lid top xMin xMax yMin yMax) while every prescribed "
+        "patch moves rigidly, scaling auto = rigid";
+    EXPECT_NE(serial.output.find(stiffening), std::string::npos) << serial.output;
+    EXPECT_NE(decomposed.output.find(stiffening), std::string::npos) << decomposed.output;
 
     const PolyMesh whole = io::readPolyMesh(caseDir / "constant" / "polyMesh");
     const std::vector<double> shortest = rbm::test::shortestEdgeAtEachPoint(whole);

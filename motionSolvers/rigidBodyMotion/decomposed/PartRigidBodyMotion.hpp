@@ -19,8 +19,8 @@
 // Refused here (rbm::InputError naming rigidBodyMotionSolverCoeffs' file): a variant other
 // than the default reduced Newton solver, pseudo-3D (2D) meshes and cyclic patches. Not done
 // on parts (the serial solver's later stages): sub-step halving, untangling, and putting
-// points of curved unconstrained patches back onto their surface; an inverted step stops the
-// run as any invalid step does.
+// points of curved unconstrained patches back onto their surface (warnings() names such
+// patches); an inverted step stops the run as any invalid step does.
 
 #include "BoundaryDescription.hpp"
 #include "FoamDictionary.hpp"
@@ -63,6 +63,9 @@ public:
     MotionSolveReport solve(std::vector<Vector3>& displacement);
 
     const MeshPart& part() const;
+    // What the front door must tell the user once (a curved unconstrained patch, not put back
+    // onto its surface on parts); the same on every rank.
+    const std::vector<std::string>& warnings() const;
     const RigidBodyMotionOptions& options() const;
     // options().describe() and the stiffened patches.
     std::string describe() const;
