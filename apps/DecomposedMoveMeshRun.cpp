@@ -10,6 +10,7 @@
 #include "PartQuality.hpp"
 #include "PartRigidBodyMotion.hpp"
 #include "PatchBoundaryConditions.hpp"
+#include "PeakMemory.hpp"
 #include "PetscSupport.hpp"
 #include "RunSummary.hpp"
 #include "RunTimes.hpp"
@@ -124,6 +125,8 @@ private:
     int readEverything();
     // Every processor folder's start time the same (exit status 2 otherwise). Collective.
     int checkSameStartTime();
+    // The summary's memory line: the largest peak resident memory of a rank, and the sum.
+    void printPeakMemory();
     void printHeader();
     bool runStep(int step, int& exitStatus);
     // The two-phase write of `name` on every rank; false (with the message said) when some
@@ -198,6 +201,20 @@ int DecomposedRun::checkSameStartTime()
              << general(-range[1]) << " to " << general(range[0])
              << "): remove the later times from the folders that have them, or give startTime\n";
     return exitBadInput;
+}
+
+void DecomposedRun::printPeakMemory()
+{
+    struct {
+        double mebibytes;
+        int rank;
+    } largest{peakResidentMebibytes(), rank_};
+    double total = largest.mebibytes;
+    RBM_CHECK_PETSC(MPI_Allreduce(MPI_IN_PLACE, &largest, 1, MPI_DOUBLE_INT, MPI_MAXLOC, communicator_));
+    RBM_CHECK_PETSC(MPI_Allreduce(MPI_IN_PLACE, &total, 1, MPI_DOUBLE, MPI_SUM, communicator_));
+    if (isRankZero())
+        out_ << "  peak memory            " << fixed(largest.mebibytes, 0) << " MiB on the largest rank (processor"
+             << largest.rank << "), " << fixed(total, 0) << " MiB over " << ranks_ << " ranks\n";
 }
 
 void DecomposedRun::printHeader()
@@ -394,9 +411,9 @@ int DecomposedRun::run()
         int exitStatus = exitSuccess;
         for (int step = 1; step <= local_.times.stepCount; ++step)
             if (!runStep(step, exitStatus)) break;
-        if (isRankZero())
-            summary_.print(out_, stepsLogged_, local_.times.stepCount,
-                           std::chrono::duration<double>(Clock::now() - runStart).count());
+        const double wallSeconds = std::chrono::duration<double>(Clock::now() - runStart).count();
+        if (isRankZero()) summary_.print(out_, stepsLogged_, local_.times.stepCount, wallSeconds);
+        printPeakMemory();
         return agreed(exitStatus, communicator_);
     } catch (const std::exception& error) {
         rankError() << error.what() << "\nrbmMoveMesh: stopping every rank (MPI_Abort).\n";

@@ -12,6 +12,7 @@
 #include "PetscSupport.hpp"
 #include "PseudoTwoDExtraction.hpp"
 #include "RbmSolverSelection.hpp"
+#include "ReturnFreedMemory.hpp"
 #include "ScopedPetscOptions.hpp"
 #include "Stiffening.hpp"
 #include "UnconstrainedPatches.hpp"
@@ -236,6 +237,7 @@ MotionSolveReport PartRigidBodyMotion::solve(std::vector<Vector3>& displacement)
         report.reason = result.reason;
         impl.state = std::move(static_cast<RbmState&>(result));
         impl.hasState = true;
+        returnFreedMemory();  // the solve's work arrays, before the quality check and the output
     }
     const std::vector<Label>& nodeOf = impl.part.pointNodes();
     for (std::size_t point = 0; point < displacement.size(); ++point) {
