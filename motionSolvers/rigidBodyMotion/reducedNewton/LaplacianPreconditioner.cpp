@@ -47,7 +47,14 @@ LaplacianPreconditioner::LaplacianPreconditioner(const RbmProblem& problem, Line
         if (problem_.hasCoupledPairs())
             throw std::invalid_argument("cyclic patches are not supported in a distributed solve yet");
         vectorSystem_ = true;
-        partLaplacian_ = std::make_unique<PartLaplacian>(problem_, laplacian_, relativeTolerance_);
+        partLaplacian_ = std::make_unique<PartLaplacian>(problem_, laplacian_, relativeTolerance_, innerSolve);
+        // PETSc holds its own copy of K: the array goes, as for the serial 3D cycle, unless the
+        // warm start reads it (sliding nodes).
+        if (problem_.hasSlidingNodes()) return;
+        const BlockPattern& pattern = problem_.blockPattern();
+        diagonal_.resize(problem_.unknownNodeCount());
+        for (int a = 0; a < problem_.unknownNodeCount(); ++a) diagonal_[a] = laplacian_[pattern.diagonal[a]];
+        std::vector<double>().swap(laplacian_);
         return;
     }
     vectorSystem_ = problem_.hasSlidingNodes();

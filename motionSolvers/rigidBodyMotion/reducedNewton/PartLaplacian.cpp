@@ -6,28 +6,35 @@
 
 namespace rbm::motion {
 
-PartLaplacian::PartLaplacian(const RbmProblem& problem, std::span<const double> laplacian, double relativeTolerance)
-    : problem_(problem)
+namespace {
+
+// Removes a sliding node's normal part(s) from its 3 displacement entries: P = I − n nᵀ (− m̂ m̂ᵀ on a line).
+void projectNode(const RbmProblem& problem, int node, double* v)
+{
+    for (const Vector3* normal : {&problem.slidingNormal(node), &problem.secondSlidingNormal(node)}) {
+        const Vector3& n = *normal;
+        const double normalPart = n.x * v[0] + n.y * v[1] + n.z * v[2];
+        v[0] -= normalPart * n.x;
+        v[1] -= normalPart * n.y;
+        v[2] -= normalPart * n.z;
+    }
+}
+
+bool isSliding(const RbmProblem& problem, int node) { return problem.constraints()[node].kind == NodeKind::sliding; }
+
+} // namespace
+
+PartLaplacian::PartLaplacian(const RbmProblem& problem, std::span<const double> laplacian, double relativeTolerance,
+                             bool solveToTolerance)
+    : problem_(problem), ownedUnknowns_(problem.ownedUnknownCount())
 {
     if (!problem.isPart() || problem.dimension() != 3)
         throw std::invalid_argument("PartLaplacian: one rank's part of a 3D problem is needed");
     if (laplacian.size() != static_cast<std::size_t>(problem.blockPattern().blockCount()))
         throw std::invalid_argument("PartLaplacian: one Laplacian entry per block of the pattern expected");
     assemble(laplacian);
-    const MPI_Comm communicator = problem.nodeExchange()->communicator();
-    const PetscInt ownedRows = 3 * static_cast<PetscInt>(problem.ownedUnknownCount());
-    RBM_CHECK_PETSC(VecCreateMPIWithArray(communicator, 3, ownedRows, PETSC_DECIDE, nullptr, rightHandSide_.out()));
-    RBM_CHECK_PETSC(VecCreateMPIWithArray(communicator, 3, ownedRows, PETSC_DECIDE, nullptr, solution_.out()));
-    RBM_CHECK_PETSC(KSPCreate(communicator, solver_.out()));
-    RBM_CHECK_PETSC(KSPSetOperators(solver_, matrix_, matrix_));
-    RBM_CHECK_PETSC(KSPSetType(solver_, KSPCG));
-    PC preconditioner = nullptr;
-    RBM_CHECK_PETSC(KSPGetPC(solver_, &preconditioner));
-    RBM_CHECK_PETSC(PCSetType(preconditioner, PCGAMG));
-    RBM_CHECK_PETSC(KSPSetTolerances(solver_, relativeTolerance, 0.0, PETSC_DEFAULT, 1000));
-    options_ = std::make_unique<InheritedOptions>("reduced");
-    configureFromOptions(solver_, *options_);
-    RBM_CHECK_PETSC(KSPSetUp(solver_));
+    setUpCycle();
+    setUpSolver(relativeTolerance, solveToTolerance);
 }
 
 PartLaplacian::~PartLaplacian() = default;
@@ -58,48 +65,201 @@ std::vector<PetscInt> PartLaplacian::unknownRows() const
 void PartLaplacian::assemble(std::span<const double> laplacian)
 {
     const BlockPattern& pattern = problem_.blockPattern();
-    // K ⊗ I in 3 × 3 blocks, projected in place.
-    std::vector<double> blocks(9 * static_cast<std::size_t>(pattern.blockCount()), 0.0);
-    for (int position = 0; position < pattern.blockCount(); ++position)
-        for (int q = 0; q < 3; ++q) blocks[9 * static_cast<std::size_t>(position) + 4 * q] = laplacian[position];
-    problem_.projectSlidingBlocks(blocks, 3);
     const std::vector<PetscInt> rows = unknownRows();
-    const int owned = problem_.ownedUnknownCount();
-    // Preallocation by block row: columns on this rank (its owned range) and elsewhere.
+    const int owned = ownedUnknowns_;
+    // Preallocation by row: columns on this rank (its owned range) and elsewhere.
     const PetscInt firstOwnedRow = owned > 0 ? rows[0] : 0;
-    std::vector<PetscInt> diagonalBlocks(owned, 0), offDiagonalBlocks(owned, 0);
+    std::vector<PetscInt> diagonalEntries(owned, 0), offDiagonalEntries(owned, 0);
     for (int a = 0; a < owned; ++a)
         for (int position = pattern.rowOffsets[a]; position < pattern.rowOffsets[a + 1]; ++position) {
             const PetscInt column = rows[pattern.columns[position]];
             const bool local = column >= firstOwnedRow && column < firstOwnedRow + owned;
-            (local ? diagonalBlocks : offDiagonalBlocks)[a] += 1;
+            (local ? diagonalEntries : offDiagonalEntries)[a] += 1;
         }
     const MPI_Comm communicator = problem_.nodeExchange()->communicator();
-    RBM_CHECK_PETSC(MatCreate(communicator, matrix_.out()));
-    RBM_CHECK_PETSC(MatSetSizes(matrix_, 3 * owned, 3 * owned, PETSC_DETERMINE, PETSC_DETERMINE));
-    RBM_CHECK_PETSC(MatSetType(matrix_, MATAIJ));  // GAMG's format; block size 3 for its aggregates
-    RBM_CHECK_PETSC(MatSetBlockSize(matrix_, 3));
-    RBM_CHECK_PETSC(MatXAIJSetPreallocation(matrix_, 3, diagonalBlocks.data(), offDiagonalBlocks.data(), nullptr, nullptr));
-    for (int a = 0; a < owned; ++a)
-        for (int position = pattern.rowOffsets[a]; position < pattern.rowOffsets[a + 1]; ++position) {
-            const PetscInt column = rows[pattern.columns[position]];
-            RBM_CHECK_PETSC(MatSetValuesBlocked(matrix_, 1, &rows[a], 1, &column,
-                                                blocks.data() + 9 * static_cast<std::size_t>(position), INSERT_VALUES));
-        }
-    RBM_CHECK_PETSC(MatAssemblyBegin(matrix_, MAT_FINAL_ASSEMBLY));
-    RBM_CHECK_PETSC(MatAssemblyEnd(matrix_, MAT_FINAL_ASSEMBLY));
-    RBM_CHECK_PETSC(MatSetOption(matrix_, MAT_SPD, PETSC_TRUE));
+    RBM_CHECK_PETSC(MatCreateAIJ(communicator, owned, owned, PETSC_DETERMINE, PETSC_DETERMINE, 0,
+                                 diagonalEntries.data(), 0, offDiagonalEntries.data(), stiffness_.out()));
+    std::vector<PetscInt> columns;
+    for (int a = 0; a < owned; ++a) {
+        columns.clear();
+        for (int position = pattern.rowOffsets[a]; position < pattern.rowOffsets[a + 1]; ++position)
+            columns.push_back(rows[pattern.columns[position]]);
+        const int first = pattern.rowOffsets[a];
+        RBM_CHECK_PETSC(MatSetValues(stiffness_, 1, &rows[a], static_cast<PetscInt>(columns.size()), columns.data(),
+                                     laplacian.data() + first, INSERT_VALUES));
+    }
+    RBM_CHECK_PETSC(MatAssemblyBegin(stiffness_, MAT_FINAL_ASSEMBLY));
+    RBM_CHECK_PETSC(MatAssemblyEnd(stiffness_, MAT_FINAL_ASSEMBLY));
+    RBM_CHECK_PETSC(MatSetOption(stiffness_, MAT_SPD, PETSC_TRUE));
+    // s of projectSlidingBlocks: the mean displacement diagonal of the node's block, K_aa.
+    slidingScale_.resize(owned);
+    for (int a = 0; a < owned; ++a) slidingScale_[a] = laplacian[pattern.diagonal[a]];
+}
+
+void PartLaplacian::setUpCycle()
+{
+    const MPI_Comm communicator = problem_.nodeExchange()->communicator();
+    RBM_CHECK_PETSC(KSPCreate(communicator, cycle_.out()));
+    RBM_CHECK_PETSC(KSPSetOperators(cycle_, stiffness_, stiffness_));
+    RBM_CHECK_PETSC(KSPSetType(cycle_, KSPPREONLY));
+    PC preconditioner = nullptr;
+    RBM_CHECK_PETSC(KSPGetPC(cycle_, &preconditioner));
+    RBM_CHECK_PETSC(PCSetType(preconditioner, PCGAMG));
+    cycleOptions_ = std::make_unique<InheritedOptions>("reduced_cycle");
+    configureFromOptions(cycle_, *cycleOptions_);
+    RBM_CHECK_PETSC(KSPSetUp(cycle_));
+    RBM_CHECK_PETSC(MatCreateVecs(stiffness_, componentIn_.out(), componentOut_.out()));
+}
+
+void PartLaplacian::setUpSolver(double relativeTolerance, bool solveToTolerance)
+{
+    const MPI_Comm communicator = problem_.nodeExchange()->communicator();
+    const PetscInt ownedRows = 3 * static_cast<PetscInt>(ownedUnknowns_);
+    RBM_CHECK_PETSC(VecCreateMPIWithArray(communicator, 3, ownedRows, PETSC_DECIDE, nullptr, rightHandSide_.out()));
+    RBM_CHECK_PETSC(VecCreateMPIWithArray(communicator, 3, ownedRows, PETSC_DECIDE, nullptr, solution_.out()));
+    RBM_CHECK_PETSC(VecDuplicate(rightHandSide_, projected_.out()));
+    RBM_CHECK_PETSC(MatCreateShell(communicator, ownedRows, ownedRows, PETSC_DETERMINE, PETSC_DETERMINE, this,
+                                   operator_.out()));
+    RBM_CHECK_PETSC(MatShellSetOperation(operator_, MATOP_MULT, reinterpret_cast<void (*)(void)>(&shellMultiply)));
+    innerSolve_ = solveToTolerance;
+    RBM_CHECK_PETSC(KSPCreate(communicator, solver_.out()));
+    RBM_CHECK_PETSC(KSPSetOperators(solver_, operator_, operator_));
+    RBM_CHECK_PETSC(KSPSetType(solver_, innerSolve_ ? KSPCG : KSPPREONLY));
+    RBM_CHECK_PETSC(KSPSetTolerances(solver_, relativeTolerance, 0.0, PETSC_DEFAULT, 1000));
+    options_ = std::make_unique<InheritedOptions>("reduced");
+    configureFromOptions(solver_, *options_);
+    // The preconditioner is this class's own, whatever -rbm_reduced_pc_type says (the serial
+    // path's option).
+    PC preconditioner = nullptr;
+    RBM_CHECK_PETSC(KSPGetPC(solver_, &preconditioner));
+    RBM_CHECK_PETSC(PCSetType(preconditioner, PCSHELL));
+    RBM_CHECK_PETSC(PCShellSetContext(preconditioner, this));
+    RBM_CHECK_PETSC(PCShellSetApply(preconditioner, &shellPrecondition));
+    RBM_CHECK_PETSC(KSPSetUp(solver_));
+}
+
+void PartLaplacian::project(double* values) const
+{
+    if (!problem_.hasSlidingNodes()) return;
+    for (int a = 0; a < ownedUnknowns_; ++a) {
+        const int node = problem_.unknownNodes()[a];
+        if (isSliding(problem_, node)) projectNode(problem_, node, values + 3 * static_cast<std::size_t>(a));
+    }
+}
+
+void PartLaplacian::componentwise(Vec in, Vec out, bool cycle) const
+{
+    // By hand rather than VecStrideGather: Krylov work vectors made from the shell have no
+    // block size.
+    for (int q = 0; q < 3; ++q) {
+        const double* from = nullptr;
+        double* component = nullptr;
+        RBM_CHECK_PETSC(VecGetArrayRead(in, &from));
+        RBM_CHECK_PETSC(VecGetArray(componentIn_, &component));
+        for (int a = 0; a < ownedUnknowns_; ++a) component[a] = from[3 * a + q];
+        RBM_CHECK_PETSC(VecRestoreArray(componentIn_, &component));
+        RBM_CHECK_PETSC(VecRestoreArrayRead(in, &from));
+        if (cycle) RBM_CHECK_PETSC(KSPSolve(cycle_, componentIn_, componentOut_));
+        else RBM_CHECK_PETSC(MatMult(stiffness_, componentIn_, componentOut_));
+        const double* result = nullptr;
+        double* to = nullptr;
+        RBM_CHECK_PETSC(VecGetArrayRead(componentOut_, &result));
+        RBM_CHECK_PETSC(VecGetArray(out, &to));
+        for (int a = 0; a < ownedUnknowns_; ++a) to[3 * a + q] = result[a];
+        RBM_CHECK_PETSC(VecRestoreArray(out, &to));
+        RBM_CHECK_PETSC(VecRestoreArrayRead(componentOut_, &result));
+    }
+}
+
+// Both: out = P (B ⊗ I) P in + (I − P) in × factor(s) at the sliding nodes, B = K (factor s)
+// or the cycle C (factor 1/s).
+void PartLaplacian::multiply(Vec x, Vec y) const
+{
+    RBM_CHECK_PETSC(VecCopy(x, projected_));
+    double* px = nullptr;
+    RBM_CHECK_PETSC(VecGetArray(projected_, &px));
+    project(px);
+    RBM_CHECK_PETSC(VecRestoreArray(projected_, &px));
+    componentwise(projected_, y, false);
+    if (!problem_.hasSlidingNodes()) return;
+    const double* xs = nullptr;
+    const double* pxs = nullptr;
+    double* ys = nullptr;
+    RBM_CHECK_PETSC(VecGetArrayRead(x, &xs));
+    RBM_CHECK_PETSC(VecGetArrayRead(projected_, &pxs));
+    RBM_CHECK_PETSC(VecGetArray(y, &ys));
+    for (int a = 0; a < ownedUnknowns_; ++a) {
+        const int node = problem_.unknownNodes()[a];
+        if (!isSliding(problem_, node)) continue;
+        double* ya = ys + 3 * static_cast<std::size_t>(a);
+        projectNode(problem_, node, ya);
+        for (int k = 0; k < 3; ++k) ya[k] += slidingScale_[a] * (xs[3 * a + k] - pxs[3 * a + k]);
+    }
+    RBM_CHECK_PETSC(VecRestoreArray(y, &ys));
+    RBM_CHECK_PETSC(VecRestoreArrayRead(projected_, &pxs));
+    RBM_CHECK_PETSC(VecRestoreArrayRead(x, &xs));
+}
+
+void PartLaplacian::precondition(Vec r, Vec z) const
+{
+    RBM_CHECK_PETSC(VecCopy(r, projected_));
+    double* pr = nullptr;
+    RBM_CHECK_PETSC(VecGetArray(projected_, &pr));
+    project(pr);
+    RBM_CHECK_PETSC(VecRestoreArray(projected_, &pr));
+    componentwise(projected_, z, true);
+    if (!problem_.hasSlidingNodes()) return;
+    const double* rs = nullptr;
+    const double* prs = nullptr;
+    double* zs = nullptr;
+    RBM_CHECK_PETSC(VecGetArrayRead(r, &rs));
+    RBM_CHECK_PETSC(VecGetArrayRead(projected_, &prs));
+    RBM_CHECK_PETSC(VecGetArray(z, &zs));
+    for (int a = 0; a < ownedUnknowns_; ++a) {
+        const int node = problem_.unknownNodes()[a];
+        if (!isSliding(problem_, node)) continue;
+        double* za = zs + 3 * static_cast<std::size_t>(a);
+        projectNode(problem_, node, za);
+        for (int k = 0; k < 3; ++k) za[k] += (rs[3 * a + k] - prs[3 * a + k]) / slidingScale_[a];
+    }
+    RBM_CHECK_PETSC(VecRestoreArray(z, &zs));
+    RBM_CHECK_PETSC(VecRestoreArrayRead(projected_, &prs));
+    RBM_CHECK_PETSC(VecRestoreArrayRead(r, &rs));
+}
+
+PetscErrorCode PartLaplacian::shellMultiply(Mat matrix, Vec x, Vec y)
+{
+    try {
+        void* context = nullptr;
+        RBM_CHECK_PETSC(MatShellGetContext(matrix, &context));
+        static_cast<const PartLaplacian*>(context)->multiply(x, y);
+        return 0;
+    } catch (const std::exception&) {
+        return PETSC_ERR_LIB;
+    }
+}
+
+PetscErrorCode PartLaplacian::shellPrecondition(PC preconditioner, Vec r, Vec z)
+{
+    try {
+        void* context = nullptr;
+        RBM_CHECK_PETSC(PCShellGetContext(preconditioner, &context));
+        static_cast<const PartLaplacian*>(context)->precondition(r, z);
+        return 0;
+    } catch (const std::exception&) {
+        return PETSC_ERR_LIB;
+    }
 }
 
 bool PartLaplacian::apply(std::span<const double> r, std::span<double> z)
 {
-    const std::size_t ownedEntries = 3 * static_cast<std::size_t>(problem_.ownedUnknownCount());
+    const std::size_t ownedEntries = 3 * static_cast<std::size_t>(ownedUnknowns_);
     if (r.size() != 3 * static_cast<std::size_t>(problem_.unknownNodeCount()) || z.size() != r.size())
         throw std::invalid_argument("PartLaplacian::apply: 3 entries per unknown node expected");
-    projected_.assign(r.begin(), r.end());
-    problem_.projectSliding(projected_, 3);
+    projectedRightHandSide_.assign(r.begin(), r.begin() + static_cast<std::ptrdiff_t>(ownedEntries));
+    project(projectedRightHandSide_.data());
     std::fill(z.begin(), z.end(), 0.0);
-    RBM_CHECK_PETSC(VecPlaceArray(rightHandSide_, projected_.data()));
+    RBM_CHECK_PETSC(VecPlaceArray(rightHandSide_, projectedRightHandSide_.data()));
     RBM_CHECK_PETSC(VecPlaceArray(solution_, z.data()));
     RBM_CHECK_PETSC(KSPSolve(solver_, rightHandSide_, solution_));
     RBM_CHECK_PETSC(VecResetArray(rightHandSide_));
@@ -107,7 +267,7 @@ bool PartLaplacian::apply(std::span<const double> r, std::span<double> z)
     std::fill(z.begin() + static_cast<std::ptrdiff_t>(ownedEntries), z.end(), 0.0);
     PetscInt iterations = 0;
     RBM_CHECK_PETSC(KSPGetIterationNumber(solver_, &iterations));
-    lastIterations_ = static_cast<int>(iterations);
+    lastIterations_ = innerSolve_ ? static_cast<int>(iterations) : 0;
     KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
     RBM_CHECK_PETSC(KSPGetConvergedReason(solver_, &reason));
     return reason > 0;

@@ -1,17 +1,28 @@
 #pragma once
 // K⁻¹ of the reduced Newton method on one rank's part of a distributed 3D problem
-// (RbmProblem::isPart; docs/parallel.md, "Distributed data"): the projected vector Laplacian
-// P (K ⊗ I) P + s (I − P) (RbmProblem::projectSlidingBlocks) assembled by rows, each rank
-// inserting the rows of its owned unknown nodes, into one PETSc matrix over the ranks, and
-// solved by CG with PETSc's algebraic multigrid (GAMG, block size 3) to a relative tolerance,
-// set up once when the part's solver is built. Its setup and every solve are collective.
+// (RbmProblem::isPart; docs/parallel.md, "Distributed data"): the inverse of the projected
+// vector Laplacian A = P (K ⊗ I) P + s (I − P) (RbmProblem::projectSlidingBlocks' operator,
+// s = K_aa at a sliding node), applied to P r.
+//
+// Only the SCALAR K is assembled (one PETSc AIJ matrix over the ranks, each rank inserting the
+// rows of its owned unknown nodes): the three components share it, and A differs from K ⊗ I
+// only at the sliding nodes' projections, which are applied node by node. A vector matrix of
+// K ⊗ I (block size 3) took 9 × the scalar's entries, about 2.9 kB per node in a hexahedral
+// mesh, more than the rest of the part's problem, and its multigrid more again.
+//
+// The solve: CG on A (a shell: three products with K between projections) preconditioned by
+// one algebraic-multigrid cycle of K (PETSc's GAMG, set up once) per component between the
+// same projections, M = P (C ⊗ I) P + (I − P)/s, to the relative tolerance, when asked to
+// (`solveToTolerance`: -rbm_reduced_inner_solve, as for the serial multigrid); by default K⁻¹
+// is M itself, one cycle per component: the Newton CG is flexible. On the 2.2·10⁵-cell cube
+// on 2 ranks the step took 13 s with one cycle and 60 s solving to 10⁻⁴ (a loaded machine).
 //
 // Unknown rows: each rank's owned unknown nodes in their part order, after the lower ranks'
 // (one contiguous range per rank); a ghost unknown's row comes from its owner through the
-// node exchange.
+// node exchange. Setup and every apply are collective.
 //
-// PETSc options: prefix rbm_reduced_ as LaplacianPreconditioner (-rbm_reduced_pc_type hypre,
-// -rbm_reduced_ksp_monitor, ...).
+// PETSc options: prefix rbm_reduced_ for the CG on A (-rbm_reduced_ksp_monitor, ...) and
+// rbm_reduced_cycle_ for the cycle (-rbm_reduced_cycle_pc_type hypre, ...).
 
 #include "PetscSupport.hpp"
 #include "RbmProblem.hpp"
@@ -26,28 +37,47 @@ class PartLaplacian {
 public:
     // laplacian: K's scalar entries in the part problem's blockPattern() order
     // (coupledDisplacementLaplacian). Throws std::invalid_argument unless the problem is a 3D part.
-    PartLaplacian(const RbmProblem& problem, std::span<const double> laplacian, double relativeTolerance);
+    PartLaplacian(const RbmProblem& problem, std::span<const double> laplacian, double relativeTolerance,
+                  bool solveToTolerance);
     ~PartLaplacian();
     PartLaplacian(const PartLaplacian&) = delete;
     PartLaplacian& operator=(const PartLaplacian&) = delete;
 
-    // z = (P (K ⊗ I) P)⁻¹ P r on the owned rows (3 per unknown node; ghost rows of z zero, of r
-    // ignored); false if CG did not converge.
+    // z = A⁻¹ P r on the owned rows (3 per unknown node; ghost rows of z zero, of r ignored);
+    // false if CG did not converge.
     bool apply(std::span<const double> r, std::span<double> z);
-    // CG iterations of the last apply.
+    // CG iterations of the last apply (0 when K⁻¹ is one cycle).
     int lastIterations() const { return lastIterations_; }
 
 private:
     // Each unknown node's global row (−1 for prescribed nodes), ghosts' from their owners.
     std::vector<PetscInt> unknownRows() const;
     void assemble(std::span<const double> laplacian);
+    void setUpCycle();
+    void setUpSolver(double relativeTolerance, bool solveToTolerance);
+    // P on 3 entries per owned unknown node.
+    void project(double* values) const;
+    // y = A x and z = M r (the shell's product and the preconditioner).
+    void multiply(Vec x, Vec y) const;
+    void precondition(Vec r, Vec z) const;
+    static PetscErrorCode shellMultiply(Mat matrix, Vec x, Vec y);
+    static PetscErrorCode shellPrecondition(PC preconditioner, Vec r, Vec z);
+    // The per-component products: out_q = K in_q (cycle false) or C in_q (cycle true).
+    void componentwise(Vec in, Vec out, bool cycle) const;
 
     const RbmProblem& problem_;
-    PetscMat matrix_;
-    PetscKsp solver_;
+    int ownedUnknowns_ = 0;
+    std::vector<double> slidingScale_;  // per owned unknown: K_aa (s), used at sliding nodes
+    bool innerSolve_ = true;
+    PetscMat stiffness_;   // scalar K, owned unknown rows
+    PetscMat operator_;    // A, a shell on 3 rows per owned unknown
+    PetscKsp cycle_;       // one multigrid cycle of K (preonly + GAMG)
+    PetscKsp solver_;      // CG on A preconditioned by M (preonly: M alone)
+    PetscVec componentIn_, componentOut_;  // one component, owned unknown rows
+    mutable PetscVec projected_;            // P x (product) or P r (preconditioner)
     PetscVec rightHandSide_, solution_;
-    std::unique_ptr<InheritedOptions> options_;
-    std::vector<double> projected_;
+    std::unique_ptr<InheritedOptions> options_, cycleOptions_;
+    std::vector<double> projectedRightHandSide_;
     int lastIterations_ = 0;
 };
 

@@ -55,7 +55,7 @@ void checkPartAgainstWhole(const rbm::test::BoxDecomposition& decomposition)
     std::vector<NodeConstraint> constraints;
     for (Label g : part.nodeGlobalIds()) constraints.push_back(wholeConstraints[g]);
     const RbmProblem problem = partProblem(3, part, constraints);
-    PartLaplacian laplacian(problem, coupledDisplacementLaplacian(problem), 1e-10);
+    PartLaplacian laplacian(problem, coupledDisplacementLaplacian(problem), 1e-10, true);
     const std::vector<double> right = rightHandSide(problem);
     std::vector<double> solution(right.size(), 1.0);
     ASSERT_TRUE(laplacian.apply(right, solution));
@@ -85,7 +85,7 @@ TEST(PartLaplacian, NeedsAPart)
 {
     const DecomposedBox box(nx, ny, nz, rbm::test::blockDecomposition(nx, ny));
     const RbmProblem whole(3, box.mesh.points, box.graph, constraintsOf(box));
-    EXPECT_THROW(PartLaplacian(whole, coupledDisplacementLaplacian(whole), 1e-8), std::invalid_argument);
+    EXPECT_THROW(PartLaplacian(whole, coupledDisplacementLaplacian(whole), 1e-8, true), std::invalid_argument);
 }
 
 } // namespace
