@@ -171,60 +171,34 @@ void PartLaplacian::componentwise(Vec in, Vec out, bool cycle) const
     }
 }
 
-// Both: out = P (B ⊗ I) P in + (I − P) in × factor(s) at the sliding nodes, B = K (factor s)
-// or the cycle C (factor 1/s).
-void PartLaplacian::multiply(Vec x, Vec y) const
+// out = P (B ⊗ I) P in + (I − P) in × f at the sliding nodes: the operator A (B = K, f = s) or
+// the preconditioner M (B = the cycle C, f = 1/s).
+void PartLaplacian::betweenProjections(Vec in, Vec out, bool cycle) const
 {
-    RBM_CHECK_PETSC(VecCopy(x, projected_));
-    double* px = nullptr;
-    RBM_CHECK_PETSC(VecGetArray(projected_, &px));
-    project(px);
-    RBM_CHECK_PETSC(VecRestoreArray(projected_, &px));
-    componentwise(projected_, y, false);
+    RBM_CHECK_PETSC(VecCopy(in, projected_));
+    double* projected = nullptr;
+    RBM_CHECK_PETSC(VecGetArray(projected_, &projected));
+    project(projected);
+    RBM_CHECK_PETSC(VecRestoreArray(projected_, &projected));
+    componentwise(projected_, out, cycle);
     if (!problem_.hasSlidingNodes()) return;
-    const double* xs = nullptr;
-    const double* pxs = nullptr;
-    double* ys = nullptr;
-    RBM_CHECK_PETSC(VecGetArrayRead(x, &xs));
-    RBM_CHECK_PETSC(VecGetArrayRead(projected_, &pxs));
-    RBM_CHECK_PETSC(VecGetArray(y, &ys));
+    const double* ins = nullptr;
+    const double* projecteds = nullptr;
+    double* outs = nullptr;
+    RBM_CHECK_PETSC(VecGetArrayRead(in, &ins));
+    RBM_CHECK_PETSC(VecGetArrayRead(projected_, &projecteds));
+    RBM_CHECK_PETSC(VecGetArray(out, &outs));
     for (int a = 0; a < ownedUnknowns_; ++a) {
         const int node = problem_.unknownNodes()[a];
         if (!isSliding(problem_, node)) continue;
-        double* ya = ys + 3 * static_cast<std::size_t>(a);
-        projectNode(problem_, node, ya);
-        for (int k = 0; k < 3; ++k) ya[k] += slidingScale_[a] * (xs[3 * a + k] - pxs[3 * a + k]);
+        double* outA = outs + 3 * static_cast<std::size_t>(a);
+        projectNode(problem_, node, outA);
+        const double factor = cycle ? 1.0 / slidingScale_[a] : slidingScale_[a];
+        for (int k = 0; k < 3; ++k) outA[k] += factor * (ins[3 * a + k] - projecteds[3 * a + k]);
     }
-    RBM_CHECK_PETSC(VecRestoreArray(y, &ys));
-    RBM_CHECK_PETSC(VecRestoreArrayRead(projected_, &pxs));
-    RBM_CHECK_PETSC(VecRestoreArrayRead(x, &xs));
-}
-
-void PartLaplacian::precondition(Vec r, Vec z) const
-{
-    RBM_CHECK_PETSC(VecCopy(r, projected_));
-    double* pr = nullptr;
-    RBM_CHECK_PETSC(VecGetArray(projected_, &pr));
-    project(pr);
-    RBM_CHECK_PETSC(VecRestoreArray(projected_, &pr));
-    componentwise(projected_, z, true);
-    if (!problem_.hasSlidingNodes()) return;
-    const double* rs = nullptr;
-    const double* prs = nullptr;
-    double* zs = nullptr;
-    RBM_CHECK_PETSC(VecGetArrayRead(r, &rs));
-    RBM_CHECK_PETSC(VecGetArrayRead(projected_, &prs));
-    RBM_CHECK_PETSC(VecGetArray(z, &zs));
-    for (int a = 0; a < ownedUnknowns_; ++a) {
-        const int node = problem_.unknownNodes()[a];
-        if (!isSliding(problem_, node)) continue;
-        double* za = zs + 3 * static_cast<std::size_t>(a);
-        projectNode(problem_, node, za);
-        for (int k = 0; k < 3; ++k) za[k] += (rs[3 * a + k] - prs[3 * a + k]) / slidingScale_[a];
-    }
-    RBM_CHECK_PETSC(VecRestoreArray(z, &zs));
-    RBM_CHECK_PETSC(VecRestoreArrayRead(projected_, &prs));
-    RBM_CHECK_PETSC(VecRestoreArrayRead(r, &rs));
+    RBM_CHECK_PETSC(VecRestoreArray(out, &outs));
+    RBM_CHECK_PETSC(VecRestoreArrayRead(projected_, &projecteds));
+    RBM_CHECK_PETSC(VecRestoreArrayRead(in, &ins));
 }
 
 PetscErrorCode PartLaplacian::shellMultiply(Mat matrix, Vec x, Vec y)
@@ -232,7 +206,7 @@ PetscErrorCode PartLaplacian::shellMultiply(Mat matrix, Vec x, Vec y)
     try {
         void* context = nullptr;
         RBM_CHECK_PETSC(MatShellGetContext(matrix, &context));
-        static_cast<const PartLaplacian*>(context)->multiply(x, y);
+        static_cast<const PartLaplacian*>(context)->betweenProjections(x, y, false);
         return 0;
     } catch (const std::exception&) {
         return PETSC_ERR_LIB;
@@ -244,7 +218,7 @@ PetscErrorCode PartLaplacian::shellPrecondition(PC preconditioner, Vec r, Vec z)
     try {
         void* context = nullptr;
         RBM_CHECK_PETSC(PCShellGetContext(preconditioner, &context));
-        static_cast<const PartLaplacian*>(context)->precondition(r, z);
+        static_cast<const PartLaplacian*>(context)->betweenProjections(r, z, true);
         return 0;
     } catch (const std::exception&) {
         return PETSC_ERR_LIB;

@@ -57,9 +57,8 @@ private:
     void setUpSolver(double relativeTolerance, bool solveToTolerance);
     // P on 3 entries per owned unknown node.
     void project(double* values) const;
-    // y = A x and z = M r (the shell's product and the preconditioner).
-    void multiply(Vec x, Vec y) const;
-    void precondition(Vec r, Vec z) const;
+    // A in (cycle false: the shell's product) or M in (cycle true: the preconditioner).
+    void betweenProjections(Vec in, Vec out, bool cycle) const;
     static PetscErrorCode shellMultiply(Mat matrix, Vec x, Vec y);
     static PetscErrorCode shellPrecondition(PC preconditioner, Vec r, Vec z);
     // The per-component products: out_q = K in_q (cycle false) or C in_q (cycle true).
