@@ -58,6 +58,19 @@ void copyMatrix(Mat matrix, std::vector<int>& offsets, std::vector<int>& columns
 
 } // namespace
 
+std::unique_ptr<ThreeVectorMultigrid> ThreeVectorMultigrid::buildAggregation(std::span<const int> rowOffsets,
+                                                                           std::span<const int> columns,
+                                                                           std::span<const double> values)
+{
+    if (rowOffsets.size() < 2) return nullptr;
+    try {
+        return std::make_unique<ThreeVectorMultigrid>(
+            rowOffsets, columns, values, buildSmoothedAggregation(rowOffsets, columns, values, aggregationCoarsestRows));
+    } catch (const std::runtime_error&) {
+        return nullptr;
+    }
+}
+
 std::unique_ptr<ThreeVectorMultigrid> ThreeVectorMultigrid::build(std::span<const int> rowOffsets,
                                                                 std::span<const int> columns,
                                                                 std::span<const double> values,

@@ -46,6 +46,12 @@ public:
     // twist3D case).
     static std::unique_ptr<ThreeVectorMultigrid> build(std::span<const int> rowOffsets, std::span<const int> columns,
                                                        std::span<const double> values, std::string_view solverName);
+    // rbm's smoothed-aggregation cycle of the CSR matrix whatever the options and the ranks (one
+    // rank's own block of a distributed matrix); nullptr for no rows or where the hierarchy
+    // cannot be built. The arrays must outlive it as for build().
+    static std::unique_ptr<ThreeVectorMultigrid> buildAggregation(std::span<const int> rowOffsets,
+                                                                  std::span<const int> columns,
+                                                                  std::span<const double> values);
 
     // pc: a set-up PC of type mg or gamg on PETSC_COMM_SELF whose finest operator equals the CSR
     // matrix (rowOffsets, columns, values), rows in the same order. Throws std::runtime_error if

@@ -32,8 +32,17 @@ PartLaplacian::PartLaplacian(const RbmProblem& problem, std::span<const double> 
         throw std::invalid_argument("PartLaplacian: one rank's part of a 3D problem is needed");
     if (laplacian.size() != static_cast<std::size_t>(problem.blockPattern().blockCount()))
         throw std::invalid_argument("PartLaplacian: one Laplacian entry per block of the pattern expected");
-    assemble(laplacian);
-    setUpCycle();
+    char cycle[16] = "local";
+    RBM_CHECK_PETSC(PetscOptionsGetString(nullptr, "rbm_reduced_", "-part_cycle", cycle, sizeof(cycle), nullptr));
+    const std::string cycleName = cycle;
+    if (cycleName != "local" && cycleName != "gamg")
+        throw std::invalid_argument("-rbm_reduced_part_cycle " + cycleName + ": expected local or gamg");
+    useLocalCycle_ = cycleName == "local";
+    // The matrix over the ranks only where something multiplies by it or cycles on it.
+    if (!useLocalCycle_ || solveToTolerance) assemble(laplacian);
+    else slidingScales(laplacian);
+    if (useLocalCycle_) setUpLocalCycle(laplacian);
+    else setUpCycle();
     setUpSolver(relativeTolerance, solveToTolerance);
 }
 
@@ -91,9 +100,37 @@ void PartLaplacian::assemble(std::span<const double> laplacian)
     RBM_CHECK_PETSC(MatAssemblyBegin(stiffness_, MAT_FINAL_ASSEMBLY));
     RBM_CHECK_PETSC(MatAssemblyEnd(stiffness_, MAT_FINAL_ASSEMBLY));
     RBM_CHECK_PETSC(MatSetOption(stiffness_, MAT_SPD, PETSC_TRUE));
+    RBM_CHECK_PETSC(MatCreateVecs(stiffness_, componentIn_.out(), componentOut_.out()));
+    slidingScales(laplacian);
+}
+
+void PartLaplacian::slidingScales(std::span<const double> laplacian)
+{
     // s of projectSlidingBlocks: the mean displacement diagonal of the node's block, K_aa.
-    slidingScale_.resize(owned);
-    for (int a = 0; a < owned; ++a) slidingScale_[a] = laplacian[pattern.diagonal[a]];
+    const BlockPattern& pattern = problem_.blockPattern();
+    slidingScale_.resize(ownedUnknowns_);
+    for (int a = 0; a < ownedUnknowns_; ++a) slidingScale_[a] = laplacian[pattern.diagonal[a]];
+}
+
+void PartLaplacian::setUpLocalCycle(std::span<const double> laplacian)
+{
+    // Owned unknowns come first in the part's unknown numbering: a column below their count is
+    // one of them.
+    const BlockPattern& pattern = problem_.blockPattern();
+    localOffsets_.assign(1, 0);
+    for (int a = 0; a < ownedUnknowns_; ++a) {
+        for (int position = pattern.rowOffsets[a]; position < pattern.rowOffsets[a + 1]; ++position) {
+            if (pattern.columns[position] >= ownedUnknowns_) continue;
+            localColumns_.push_back(pattern.columns[position]);
+            localValues_.push_back(laplacian[position]);
+        }
+        localOffsets_.push_back(static_cast<int>(localColumns_.size()));
+    }
+    localCycle_ = ThreeVectorMultigrid::buildAggregation(localOffsets_, localColumns_, localValues_);
+    if (ownedUnknowns_ > 0 && !localCycle_)
+        throw std::runtime_error("PartLaplacian: the multigrid hierarchy of the rank's block of K could not be built");
+    // The cycle keeps K's finest values in single precision where it has coarser levels.
+    if (localCycle_ && !localCycle_->readsFinestValues()) std::vector<double>().swap(localValues_);
 }
 
 void PartLaplacian::setUpCycle()
@@ -108,7 +145,6 @@ void PartLaplacian::setUpCycle()
     cycleOptions_ = std::make_unique<InheritedOptions>("reduced_cycle");
     configureFromOptions(cycle_, *cycleOptions_);
     RBM_CHECK_PETSC(KSPSetUp(cycle_));
-    RBM_CHECK_PETSC(MatCreateVecs(stiffness_, componentIn_.out(), componentOut_.out()));
 }
 
 void PartLaplacian::setUpSolver(double relativeTolerance, bool solveToTolerance)
@@ -180,7 +216,18 @@ void PartLaplacian::betweenProjections(Vec in, Vec out, bool cycle) const
     RBM_CHECK_PETSC(VecGetArray(projected_, &projected));
     project(projected);
     RBM_CHECK_PETSC(VecRestoreArray(projected_, &projected));
-    componentwise(projected_, out, cycle);
+    if (cycle && useLocalCycle_) {
+        const double* from = nullptr;
+        double* to = nullptr;
+        RBM_CHECK_PETSC(VecGetArrayRead(projected_, &from));
+        RBM_CHECK_PETSC(VecGetArray(out, &to));
+        const std::size_t entries = 3 * static_cast<std::size_t>(ownedUnknowns_);
+        if (localCycle_) localCycle_->apply({from, entries}, {to, entries});
+        RBM_CHECK_PETSC(VecRestoreArray(out, &to));
+        RBM_CHECK_PETSC(VecRestoreArrayRead(projected_, &from));
+    } else {
+        componentwise(projected_, out, cycle);
+    }
     if (!problem_.hasSlidingNodes()) return;
     const double* ins = nullptr;
     const double* projecteds = nullptr;

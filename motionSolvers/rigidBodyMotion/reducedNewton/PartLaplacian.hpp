@@ -11,11 +11,17 @@
 // mesh, more than the rest of the part's problem, and its multigrid more again.
 //
 // The solve: CG on A (a shell: three products with K between projections) preconditioned by
-// one algebraic-multigrid cycle of K (PETSc's GAMG, set up once) per component between the
-// same projections, M = P (C ⊗ I) P + (I − P)/s, to the relative tolerance, when asked to
+// one multigrid cycle C of K per component between the same projections,
+// M = P (C ⊗ I) P + (I − P)/s, to the relative tolerance, when asked to
 // (`solveToTolerance`: -rbm_reduced_inner_solve, as for the serial multigrid); by default K⁻¹
 // is M itself, one cycle per component: the Newton CG is flexible. On the 2.2·10⁵-cell cube
 // on 2 ranks the step took 13 s with one cycle and 60 s solving to 10⁻⁴ (a loaded machine).
+//
+// C is by default block Jacobi over the ranks: rbm's own smoothed-aggregation cycle
+// (ThreeVectorMultigrid, the serial 3D solver's) of the block of K that couples the rank's
+// owned unknowns, the couplings to other ranks left out. It needs no matrix over the ranks:
+// PETSc's GAMG of the whole K (-rbm_reduced_part_cycle gamg) held about 900 bytes a node more
+// (its aggregation on the squared graph), and the assembled K 330 more.
 //
 // Unknown rows: each rank's owned unknown nodes in their part order, after the lower ranks'
 // (one contiguous range per rank); a ghost unknown's row comes from its owner through the
@@ -26,6 +32,7 @@
 
 #include "PetscSupport.hpp"
 #include "RbmProblem.hpp"
+#include "ThreeVectorMultigrid.hpp"
 
 #include <memory>
 #include <span>
@@ -53,6 +60,10 @@ private:
     // Each unknown node's global row (−1 for prescribed nodes), ghosts' from their owners.
     std::vector<PetscInt> unknownRows() const;
     void assemble(std::span<const double> laplacian);
+    void slidingScales(std::span<const double> laplacian);
+    // The cycle C: rbm's smoothed aggregation of the rank's own block of K (the default,
+    // -rbm_reduced_part_cycle local) or PETSc's GAMG of the whole K (-rbm_reduced_part_cycle gamg).
+    void setUpLocalCycle(std::span<const double> laplacian);
     void setUpCycle();
     void setUpSolver(double relativeTolerance, bool solveToTolerance);
     // P on 3 entries per owned unknown node.
@@ -70,7 +81,12 @@ private:
     bool innerSolve_ = true;
     PetscMat stiffness_;   // scalar K, owned unknown rows
     PetscMat operator_;    // A, a shell on 3 rows per owned unknown
-    PetscKsp cycle_;       // one multigrid cycle of K (preonly + GAMG)
+    PetscKsp cycle_;       // one multigrid cycle of K (preonly + GAMG), -rbm_reduced_part_cycle gamg
+    // The default cycle: of K's block of the owned unknowns (its CSR, which the cycle reads).
+    std::vector<int> localOffsets_, localColumns_;
+    std::vector<double> localValues_;
+    std::unique_ptr<ThreeVectorMultigrid> localCycle_;
+    bool useLocalCycle_ = true;
     PetscKsp solver_;      // CG on A preconditioned by M (preonly: M alone)
     PetscVec componentIn_, componentOut_;  // one component, owned unknown rows
     mutable PetscVec projected_;            // P x (product) or P r (preconditioner)
