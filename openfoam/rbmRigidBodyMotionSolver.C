@@ -417,6 +417,11 @@ void Foam::rbmRigidBodyMotionSolver::solve()
         WarningInFunction
             << "rigidBodyMotionSolver: time " << rbmOpenFOAM::timeName(runTime) << ": " << warning.c_str() << endl;
     }
+    if (!report.valid && partSolver_)
+    {
+        report.problem += std::string(" ") + gatherSwitch + "=1 in the environment (mpirun -x " + gatherSwitch
+            + ") solves the whole mesh on every processor instead.";
+    }
     if (!report.valid)
     {
         if (writeInvalid_ && report.finite)

@@ -56,23 +56,10 @@ HostStepReport HostMotionSolver::solve(int step, double time, const std::string&
     const auto started = std::chrono::steady_clock::now();
     motion::RigidBodyMotionSolver& solver = *impl_->solver;
     std::vector<Vector3>& u = solver.pointDisplacement();
-    if (valueCount != 3 * u.size())
-        throw std::invalid_argument("HostMotionSolver::solve: " + std::to_string(valueCount) + " values for " +
-                                    std::to_string(u.size()) + " points (3 per point)");
     // Only the prescribed points' values matter to solve(); the others are its result.
-    readVectors(displacement, u);
-    motion::MotionSolveReport solve;
-    try {
-        solve = solver.solve();
-    } catch (const InputError& error) {
-        throw HostInputError(error.file(), error.line(), error.message());
-    }
-    writeVectors(u, displacement);
-
-    io::StepLogRecord record;
-    record.step = step;
-    record.time = time;
-    record.timeName = timeName;
+    const motion::MotionSolveReport solve =
+        solveOnHostArray("HostMotionSolver", displacement, valueCount, u, [&solver] { return solver.solve(); });
+    io::StepLogRecord record = stepRecord(step, time, timeName);
     const motion::StepVerdict verdict = impl_->assessor->assess(solve, u, solver.curPoints(), record);
     record.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 

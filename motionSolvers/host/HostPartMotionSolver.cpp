@@ -20,7 +20,6 @@
 #include <chrono>
 #include <climits>
 #include <cmath>
-#include <limits>
 
 namespace rbm::host {
 
@@ -62,29 +61,16 @@ void throwIfAnyRankFailed(const LocalFailure& mine, MPI_Comm communicator)
     throw std::runtime_error(message);
 }
 
-// The log record's solve figures, and the verdict's finiteness agreed over the ranks: a rank
-// with a non-finite displacement makes the step non-finite on every rank.
-motion::StepVerdict solveVerdict(const motion::MotionSolveReport& solve, const std::vector<Vector3>& displacement,
-                                 MPI_Comm communicator, io::StepLogRecord& record)
+// What was not finite on any rank (empty when every displacement was finite on every rank).
+std::string nonFiniteOnAnyRank(const std::vector<Vector3>& displacement, MPI_Comm communicator)
 {
     long long counts[2] = {std::count_if(displacement.begin(), displacement.end(),
                                          [](const Vector3& u) { return !isFinite(u); }),
                            static_cast<long long>(displacement.size())};
     RBM_CHECK_PETSC(MPI_Allreduce(MPI_IN_PLACE, counts, 2, MPI_LONG_LONG, MPI_SUM, communicator));
-    motion::StepVerdict verdict;
-    verdict.finite = counts[0] == 0 && std::isfinite(solve.residual);
-    if (counts[0] > 0)
-        verdict.nonFiniteText = "NaN or infinite displacement at " + std::to_string(counts[0]) + " of " +
-                                std::to_string(counts[1]) + " processor points";
-    else if (!verdict.finite)
-        verdict.nonFiniteText = "a residual of " + std::to_string(solve.residual);
-    record.subSteps = solve.subStepCount;
-    record.iterations = solve.iterations;
-    record.residual = solve.residual;
-    record.energy = solve.energy;
-    record.converged = solve.converged && verdict.finite;
-    record.reason = verdict.finite ? solve.reason : solve.reason + "; " + verdict.nonFiniteText;
-    return verdict;
+    if (counts[0] == 0) return {};
+    return "NaN or infinite displacement at " + std::to_string(counts[0]) + " of " + std::to_string(counts[1]) +
+           " processor points";
 }
 
 } // namespace
@@ -159,7 +145,6 @@ HostPartMotionSolver::~HostPartMotionSolver()
 
 std::size_t HostPartMotionSolver::pointCount() const { return impl_->mesh.points.size(); }
 long long HostPartMotionSolver::globalPointCount() const { return impl_->motion->part().globalNodeCount(); }
-std::string HostPartMotionSolver::describe() const { return impl_->motion->describe(); }
 
 HostStepReport HostPartMotionSolver::solve(int step, double time, const std::string& timeName, double* displacement,
                                            std::size_t valueCount)
@@ -167,42 +152,26 @@ HostStepReport HostPartMotionSolver::solve(int step, double time, const std::str
     const auto started = std::chrono::steady_clock::now();
     Impl& impl = *impl_;
     std::vector<Vector3>& u = impl.displacement;
-    if (valueCount != 3 * u.size())
-        throw std::invalid_argument("HostPartMotionSolver::solve: " + std::to_string(valueCount) + " values for " +
-                                    std::to_string(u.size()) + " points (3 per point)");
-    readVectors(displacement, u);
-    motion::MotionSolveReport solve;
-    try {
-        solve = impl.motion->solve(u);
-    } catch (const InputError& error) {
-        throw HostInputError(error.file(), error.line(), error.message());
-    }
-    writeVectors(u, displacement);
-
-    io::StepLogRecord record;
-    record.step = step;
-    record.time = time;
-    record.timeName = timeName;
-    const MPI_Comm communicator = hostCommunicator();
-    motion::StepVerdict verdict = solveVerdict(solve, u, communicator, record);
+    const motion::MotionSolveReport solve = solveOnHostArray("HostPartMotionSolver", displacement, valueCount, u,
+                                                             [&impl, &u] { return impl.motion->solve(u); });
+    io::StepLogRecord record = stepRecord(step, time, timeName);
+    // Every rank takes the same branch: the finiteness is agreed, and the quality is collective.
+    motion::StepVerdict verdict = motion::recordSolve(solve, nonFiniteOnAnyRank(u, hostCommunicator()), record);
     if (verdict.finite) {
         impl.points.resize(u.size());
         for (std::size_t p = 0; p < u.size(); ++p) impl.points[p] = impl.mesh.points[p] + u[p];
         const StepQuality quality = impl.quality->evaluateStep(impl.points);
         impl.quality->releaseWorkspaces();
-        record.worstQuality = quality.worstCellQuality;
-        record.maxNonOrthogonality = quality.maxNonOrthogonality;
-        record.maxSkewness = quality.maxSkewness;
-        record.invertedCells = quality.invertedCellCount;
+        motion::recordQuality(&quality, verdict, record);
     } else {
-        record.worstQuality = std::numeric_limits<double>::quiet_NaN();
-        record.maxNonOrthogonality = std::numeric_limits<double>::quiet_NaN();
-        record.maxSkewness = std::numeric_limits<double>::quiet_NaN();
+        motion::recordQuality(nullptr, verdict, record);
     }
-    verdict.valid = record.converged && record.invertedCells == 0;
     record.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-    // The part solver has neither sub-step halving nor untangling: no advice of its own.
-    return hostStepReport(record, verdict, solve.warnings, {});
+    // The general advice (more sub-steps, ...) names remedies the part solver does not have.
+    return hostStepReport(record, verdict, solve.warnings,
+                          "The solve on the processors' parts of a decomposed mesh takes each step whole: it has "
+                          "neither sub-steps nor their halving nor the untangling of inverted cells, which the "
+                          "whole-mesh solver has.");
 }
 
 } // namespace rbm::host

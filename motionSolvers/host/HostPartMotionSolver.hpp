@@ -59,9 +59,6 @@ public:
     std::size_t pointCount() const;
     long long globalPointCount() const;
 
-    // The options and the stiffened patches, as rbmMoveMesh -parallel's header prints them.
-    std::string describe() const;
-
     // As HostMotionSolver::solve, on the rank's points: `displacement` (3 × pointCount()
     // values) is read at the points of the rank's prescribed patches and overwritten with every
     // local point's displacement. The report is the same on every rank: the whole mesh's

@@ -4,6 +4,15 @@
 
 namespace rbm::host {
 
+io::StepLogRecord stepRecord(int step, double time, const std::string& timeName)
+{
+    io::StepLogRecord record;
+    record.step = step;
+    record.time = time;
+    record.timeName = timeName;
+    return record;
+}
+
 HostStepReport hostStepReport(const io::StepLogRecord& record, const motion::StepVerdict& verdict,
                               std::vector<std::string> warnings, std::string_view solverAdvice)
 {
