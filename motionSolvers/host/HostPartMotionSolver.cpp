@@ -20,6 +20,7 @@
 #include <chrono>
 #include <climits>
 #include <cmath>
+#include <utility>
 
 namespace rbm::host {
 
@@ -86,6 +87,7 @@ struct HostPartMotionSolver::Impl {
     std::unique_ptr<motion::PartQuality> quality;
     std::vector<Vector3> displacement;  // per local point
     std::vector<Vector3> points;        // points0 + displacement, for the quality
+    bool setUpWarningsGiven = false;    // the part solver's warnings() go with the first report
 };
 
 bool HostPartMotionSolver::solvesVariant(const std::string& coefficientsText, const std::string& coefficientsFile)
@@ -167,8 +169,14 @@ HostStepReport HostPartMotionSolver::solve(int step, double time, const std::str
         motion::recordQuality(nullptr, verdict, record);
     }
     record.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    std::vector<std::string> warnings = solve.warnings;
+    if (!impl.setUpWarningsGiven) {
+        const std::vector<std::string>& setUp = impl.motion->warnings();
+        warnings.insert(warnings.begin(), setUp.begin(), setUp.end());
+        impl.setUpWarningsGiven = true;
+    }
     // The general advice (more sub-steps, ...) names remedies the part solver does not have.
-    return hostStepReport(record, verdict, solve.warnings,
+    return hostStepReport(record, verdict, std::move(warnings),
                           "The solve on the processors' parts of a decomposed mesh takes each step whole: it has "
                           "neither sub-steps nor their halving nor the untangling of inverted cells, which the "
                           "whole-mesh solver has.");

@@ -62,7 +62,9 @@ public:
     // As HostMotionSolver::solve, on the rank's points: `displacement` (3 × pointCount()
     // values) is read at the points of the rank's prescribed patches and overwritten with every
     // local point's displacement. The report is the same on every rank: the whole mesh's
-    // figures (inverted cells, quality with the faces between the ranks) and its verdict.
+    // figures (inverted cells, quality with the faces between the ranks) and its verdict; the
+    // first report's warnings include the set-up's (a curved unconstrained patch whose points
+    // the part solver does not put back onto its surface).
     HostStepReport solve(int step, double time, const std::string& timeName, double* displacement,
                          std::size_t valueCount);
 
