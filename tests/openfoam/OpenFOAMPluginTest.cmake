@@ -57,7 +57,8 @@
 #                   along a different path), the
 #                   quality figures of the step lines equal; the same case with
 #                   RBM_PLUGIN_GATHER=1 takes the gathered path (its log says so and why) and
-#                   ends within the same bound.
+#                   ends within the same bound; `tolerance bogus;` stops both ranks with a FOAM
+#                   FATAL IO ERROR naming it, nothing written.
 #   aliasName       naca4415 with OpenFOAM's own librigidBodyMeshMotion.so loaded too (it
 #                   registers rigidBodyMotionSolver as well) and rbm selected as rbmMotionSolver
 #                   with an rbmMotionSolverCoeffs block (subSteps 2): equals rbmMoveMesh with
@@ -614,6 +615,18 @@ elseif(MODE STREQUAL "decomposed3D")
       endif()
     endforeach()
   endforeach()
+  # A bad coefficient stops every rank with OpenFOAM's FOAM FATAL IO ERROR naming it, before
+  # any step.
+  prepareCase(${fixture} ${pluginCase})
+  file(COPY ${fixture}/processor0 ${fixture}/processor1 DESTINATION ${pluginCase})
+  addMotionSolverEntries(${pluginCase} "rigidBodyMotionSolverCoeffs\n{\n    tolerance bogus;\n}")
+  runOnTwoRanks(${pluginCase} FAIL badCoefficient ${moveMesh})
+  expectContains("${badCoefficient_out}" "FOAM FATAL IO ERROR" "the bad coefficient's output")
+  expectContains("${badCoefficient_out}" "bogus" "the bad coefficient's output")
+  file(GLOB written ${pluginCase}/processor0/0.5)
+  if(written)
+    fail("a run with a bad coefficient wrote ${written}")
+  endif()
 
 elseif(MODE STREQUAL "cyclicChannel")
   # The oscillating channel with its slip sides replaced by a translational cyclic pair, left
