@@ -74,37 +74,29 @@ double StepAssessor::worstCellQuality(const QualityReport& report) const
     return worst;
 }
 
-StepVerdict StepAssessor::assess(const MotionSolveReport& solve, std::span<const Vector3> displacement,
-                                 std::span<const Vector3> points, io::StepLogRecord& record)
+StepVerdict recordSolve(const MotionSolveReport& solve, std::string nonFiniteText, io::StepLogRecord& record)
 {
     // A solve that produced NaN or infinite values failed whatever it reports.
     StepVerdict verdict;
-    const auto nonFinite = std::count_if(displacement.begin(), displacement.end(),
-                                         [](const Vector3& u) { return !isFinite(u); });
-    verdict.finite = nonFinite == 0 && std::isfinite(solve.residual);
-    if (!verdict.finite) {
-        if (nonFinite > 0) {
-            const auto first = std::find_if(displacement.begin(), displacement.end(),
-                                            [](const Vector3& u) { return !isFinite(u); });
-            verdict.nonFiniteText = "NaN or infinite displacement at " + std::to_string(nonFinite) + " of " +
-                                    std::to_string(points.size()) + " points (first: point " +
-                                    std::to_string(first - displacement.begin()) + ")";
-        } else {
-            verdict.nonFiniteText = "a residual of " + general(solve.residual);
-        }
-    }
+    verdict.finite = nonFiniteText.empty() && std::isfinite(solve.residual);
+    if (!verdict.finite) verdict.nonFiniteText = nonFiniteText.empty() ? "a residual of " + general(solve.residual)
+                                                                       : std::move(nonFiniteText);
     record.subSteps = solve.subStepCount;
     record.iterations = solve.iterations;
     record.residual = solve.residual;
     record.energy = solve.energy;
     record.converged = solve.converged && verdict.finite;
     record.reason = verdict.finite ? solve.reason : solve.reason + "; " + verdict.nonFiniteText;
-    if (verdict.finite) {
-        const StepQuality quality = evaluator_.evaluateStep(points);
-        record.worstQuality = quality.worstCellQuality;
-        record.maxNonOrthogonality = quality.maxNonOrthogonality;
-        record.maxSkewness = quality.maxSkewness;
-        record.invertedCells = quality.invertedCellCount;
+    return verdict;
+}
+
+void recordQuality(const StepQuality* quality, StepVerdict& verdict, io::StepLogRecord& record)
+{
+    if (quality) {
+        record.worstQuality = quality->worstCellQuality;
+        record.maxNonOrthogonality = quality->maxNonOrthogonality;
+        record.maxSkewness = quality->maxSkewness;
+        record.invertedCells = quality->invertedCellCount;
     } else {
         record.worstQuality = std::numeric_limits<double>::quiet_NaN();
         record.maxNonOrthogonality = std::numeric_limits<double>::quiet_NaN();
@@ -112,6 +104,28 @@ StepVerdict StepAssessor::assess(const MotionSolveReport& solve, std::span<const
         record.invertedCells = 0;
     }
     verdict.valid = record.converged && record.invertedCells == 0;
+}
+
+StepVerdict StepAssessor::assess(const MotionSolveReport& solve, std::span<const Vector3> displacement,
+                                 std::span<const Vector3> points, io::StepLogRecord& record)
+{
+    std::string nonFiniteText;
+    const auto nonFinite = std::count_if(displacement.begin(), displacement.end(),
+                                         [](const Vector3& u) { return !isFinite(u); });
+    if (nonFinite > 0) {
+        const auto first = std::find_if(displacement.begin(), displacement.end(),
+                                        [](const Vector3& u) { return !isFinite(u); });
+        nonFiniteText = "NaN or infinite displacement at " + std::to_string(nonFinite) + " of " +
+                        std::to_string(points.size()) + " points (first: point " +
+                        std::to_string(first - displacement.begin()) + ")";
+    }
+    StepVerdict verdict = recordSolve(solve, std::move(nonFiniteText), record);
+    if (verdict.finite) {
+        const StepQuality quality = evaluator_.evaluateStep(points);
+        recordQuality(&quality, verdict, record);
+    } else {
+        recordQuality(nullptr, verdict, record);
+    }
     return verdict;
 }
 

@@ -80,6 +80,15 @@ private:
     QualityEvaluator evaluator_;
 };
 
+// StepAssessor::assess's two halves, for a front door that evaluates the quality itself (one
+// rank's part of a decomposed mesh: PartQuality, reduced over the ranks).
+// The solve's figures into `record` and the verdict's finiteness: `nonFiniteText` says which
+// displacements were not finite (empty when all were); a non-finite residual fails too.
+StepVerdict recordSolve(const MotionSolveReport& solve, std::string nonFiniteText, io::StepLogRecord& record);
+// The quality figures into `record` (NaN and no inverted cell when `quality` is null: a
+// non-finite step is not evaluated), then the verdict's validity.
+void recordQuality(const StepQuality* quality, StepVerdict& verdict, io::StepLogRecord& record);
+
 // Why a step is invalid, one sentence without a full stop: "the moved mesh has 3 inverted
 // cells", "... and the solve did not converge (reason)", "the motion solver did not converge
 // (reason)" or "the motion solver produced <nonFiniteText> (solver's reason: ...)".

@@ -1,15 +1,11 @@
 #include "rbmGlobalMesh.H"
 
-#include "IStringStream.H"
-#include "OStringStream.H"
 #include "PstreamBuffers.H"
 #include "globalIndex.H"
-#include "globalMeshData.H"
 #include "processorPolyPatch.H"
+#include "rbmHostPatch.H"
 #include "rbmOpenFOAMVersion.H"
-
-#include <iomanip>
-#include <sstream>
+#include "rbmPointNumbering.H"
 
 namespace
 {
@@ -34,36 +30,6 @@ void appendFace(Foam::DynamicList<Foam::label>& list, const Foam::face& f, const
     }
 }
 
-// The entries of a plain cyclic patch rbm reads (io/CyclicPatchEntries.hpp), from what the patch
-// writes: neighbourPatch and the transform (`transform` in v1912, `transformType` in OpenFOAM
-// 13) with, for a rotation, its axis and centre.
-std::vector<std::pair<std::string, std::string>> cyclicEntries(const Foam::polyPatch& patch)
-{
-    Foam::OStringStream os;
-    patch.write(os);
-    Foam::IStringStream is(os.str());
-    const Foam::dictionary dict(is);
-    std::vector<std::pair<std::string, std::string>> entries;
-    for (const char* keyword : {"neighbourPatch", "transform", "transformType"})
-    {
-        if (dict.found(keyword))
-        {
-            entries.emplace_back(keyword, Foam::word(dict.lookup(keyword)));
-        }
-    }
-    for (const char* keyword : {"rotationAxis", "rotationCentre"})
-    {
-        if (dict.found(keyword))
-        {
-            const Foam::vector v(dict.lookup(keyword));
-            std::ostringstream text;
-            text << std::setprecision(17) << '(' << v.x() << ' ' << v.y() << ' ' << v.z() << ')';
-            entries.emplace_back(keyword, text.str());
-        }
-    }
-    return entries;
-}
-
 void appendHostFace(rbm::host::HostMesh& host, const Foam::labelList& encoded, Foam::label& i)
 {
     const Foam::label n = encoded[i++];
@@ -82,38 +48,13 @@ Foam::rbmGlobalMesh::rbmGlobalMesh(const polyMesh& mesh, const pointField& point
     nRealPatches_(0)
 {
     const polyBoundaryMesh& patches = mesh.boundaryMesh();
-    forAll(patches, patchi)
-    {
-        if (isA<processorPolyPatch>(patches[patchi]))
-        {
-            if (!isType<processorPolyPatch>(patches[patchi]))
-            {
-                FatalErrorInFunction
-                    << "rigidBodyMotionSolver: patch " << patches[patchi].name() << " is a "
-                    << patches[patchi].type() << " patch; only plain processor patches are supported"
-                    << " (a processorCyclic is a cyclic interface split between processors: keep each"
-                    << " cyclic pair on one processor with preservePatches in decomposeParDict)."
-                    << exit(FatalError);
-            }
-        }
-        else
-        {
-            if (nRealPatches_ != patchi)
-            {
-                FatalErrorInFunction
-                    << "rigidBodyMotionSolver: patch " << patches[patchi].name()
-                    << " comes after a processor patch; expected processor patches last."
-                    << exit(FatalError);
-            }
-            ++nRealPatches_;
-        }
-    }
+    nRealPatches_ = rbmRealPatchCount(patches);
 
     // Points: OpenFOAM's global numbering, each shared point once.
-    labelList uniquePoints;
-    autoPtr<globalIndex> globalPointNumbering = mesh.globalData().mergePoints(pointToGlobal_, uniquePoints);
-    const List<pointField> allPoints(allGather(pointField(points0, uniquePoints)));
-    globalPoints_.setSize(globalPointNumbering().size());
+    rbmPointNumbering numbering = rbmGlobalPointNumbering(mesh);
+    pointToGlobal_.transfer(numbering.pointToGlobal);
+    const List<pointField> allPoints(allGather(pointField(points0, numbering.uniquePoints)));
+    globalPoints_.setSize(numbering.nGlobalPoints);
     label next = 0;
     for (const pointField& part : allPoints)
     {
@@ -213,17 +154,7 @@ Foam::rbmGlobalMesh::rbmGlobalMesh(const polyMesh& mesh, const pointField& point
             boundary.append(globalCells.toGlobal(owner[facei]));
             appendFace(boundary, faces[facei], pointToGlobal_);
         }
-        rbm::host::HostPatch hostPatch;
-        hostPatch.name = pp.name();
-        hostPatch.type = pp.type();
-        if (hostPatch.type == "cyclic")
-        {
-            hostPatch.entries = cyclicEntries(pp);
-        }
-        for (const word& group : pp.inGroups())
-        {
-            hostPatch.groups.push_back(group);
-        }
+        rbm::host::HostPatch hostPatch = rbmHostPatch(pp);
         hostPatch.startFace = static_cast<int>(host_.owner.size());
         for (const labelList& part : allGather(labelList(boundary)))
         {

@@ -46,6 +46,19 @@
 #   parallel        the oscillatingChannel decomposed in two (decomposePar), 5 steps of
 #                   `mpirun -np 2 pimpleFoam -parallel`, reconstructPar: the points equal the
 #                   serial rbmMoveMesh's to 1e-8 (MPIEXEC: the mpiexec to use).
+#   decomposed3D    tests/data/decomposedTwist/np2 (a column whose lid turns 20° in two steps, its
+#                   sides sliding; decomposePar's processor folders, method manual, the lid's
+#                   edge on the cut): `mpirun -np 2 moveDynamicMesh -parallel` solves on the
+#                   processors' parts (the log says "distributed over 2 processors"; no rank
+#                   gathers the mesh): at both times every point of every processor folder
+#                   (by pointProcAddressing: the fixture keeps no other addressing for
+#                   reconstructPar) within 2.5e-6 of its shortest edge of rbmMoveMesh's serial
+#                   run (each solve stops within displacementTolerance 1e-6 of the minimum,
+#                   along a different path), the
+#                   quality figures of the step lines equal; the same case with
+#                   RBM_PLUGIN_GATHER=1 takes the gathered path (its log says so and why) and
+#                   ends within the same bound; `tolerance bogus;` stops both ranks with a FOAM
+#                   FATAL IO ERROR naming it, nothing written.
 #   aliasName       naca4415 with OpenFOAM's own librigidBodyMeshMotion.so loaded too (it
 #                   registers rigidBodyMotionSolver as well) and rbm selected as rbmMotionSolver
 #                   with an rbmMotionSolverCoeffs block (subSteps 2): equals rbmMoveMesh with
@@ -93,6 +106,13 @@ function(expectContains text what where)
   string(FIND "${text}" "${what}" at)
   if(at EQUAL -1)
     fail("${where} does not contain '${what}':\n${text}")
+  endif()
+endfunction()
+
+function(expectLacks text what where)
+  string(FIND "${text}" "${what}" at)
+  if(NOT at EQUAL -1)
+    fail("${where} contains '${what}':\n${text}")
   endif()
 endfunction()
 
@@ -200,9 +220,9 @@ function(compareCyclicPairs polyMeshDir movedPoints tolerance)
   endif()
 endfunction()
 
-# Runs the flow solver on a decomposed case on 2 ranks; the optional second argument is the
-# expected exit (0 by default, FAIL for a run that must stop).
-macro(runFlowSolverOnTwoRanks case)
+# runOnTwoRanks(<case> <expected> <log name> command...): runOpenFOAM of `command -parallel`
+# under mpiexec on 2 ranks (RBM_PLUGIN_GATHER passed on to them when set).
+function(runOnTwoRanks case expected name)
   # Open MPI refuses root without --allow-run-as-root; 2 ranks on fewer cores need --oversubscribe.
   execute_process(COMMAND id -u OUTPUT_VARIABLE uid OUTPUT_STRIP_TRAILING_WHITESPACE)
   set(mpiOptions -np 2 --oversubscribe)
@@ -215,11 +235,21 @@ macro(runFlowSolverOnTwoRanks case)
   if(OPENFOAM STREQUAL "13")
     list(APPEND mpiOptions --noprefix)
   endif()
+  if(DEFINED ENV{RBM_PLUGIN_GATHER})
+    list(APPEND mpiOptions -x RBM_PLUGIN_GATHER)
+  endif()
+  runOpenFOAM(${case} ${expected} ${name} ${MPIEXEC} ${mpiOptions} -x WM_PROJECT_DIR ${ARGN} -parallel)
+  set(${name}_out "${${name}_out}" PARENT_SCOPE)
+endfunction()
+
+# Runs the flow solver on a decomposed case on 2 ranks; the optional second argument is the
+# expected exit (0 by default, FAIL for a run that must stop).
+macro(runFlowSolverOnTwoRanks case)
   set(expectedExit 0)
   if(${ARGC} GREATER 1)
     set(expectedExit ${ARGV1})
   endif()
-  runOpenFOAM(${case} ${expectedExit} pimpleFoam ${MPIEXEC} ${mpiOptions} -x WM_PROJECT_DIR ${flowSolver} -parallel)
+  runOnTwoRanks(${case} ${expectedExit} pimpleFoam ${flowSolver})
 endmacro()
 
 function(setControl case keyword value)
@@ -449,10 +479,7 @@ elseif(MODE STREQUAL "restart")
   setControl(${restartCase} startFrom latestTime)
   runOpenFOAM(${restartCase} 0 secondPart ${moveMesh})
   expectContains("${secondPart_out}" "Create mesh for time = 0.075" "the restart's log")
-  string(FIND "${secondPart_out}" "Time = 0.025 " rerun)
-  if(NOT rerun EQUAL -1)
-    fail("the restart ran from the start again:\n${secondPart_out}")
-  endif()
+  expectLacks("${secondPart_out}" "Time = 0.025 " "the restart's log (it ran from the start again)")
   stepFigures("${secondPart_out}" 0.1 line)
   comparePoints(${pluginCase}/0.15/polyMesh/points.gz ${restartCase}/0.15/polyMesh/points.gz 1e-8)
 
@@ -544,6 +571,62 @@ elseif(MODE STREQUAL "parallel")
   expectContains("${pimpleFoam_out}" "\nEnd" "pimpleFoam's log")
   runOpenFOAM(${pluginCase} 0 reconstructPar reconstructPar -latestTime)
   comparePoints(${rbmCase}/0.025/polyMesh/points ${pluginCase}/0.025/polyMesh/points 1e-8)
+
+elseif(MODE STREQUAL "decomposed3D")
+  # The fixture as decomposePar left it (its method manual needs the cellDecomposition file it
+  # does not keep, so the processor folders are copied, not remade), with the fvSchemes and
+  # fvSolution OpenFOAM's programs read.
+  set(fixture ${RBM_WORK_DIR}/fixture)
+  file(REMOVE_RECURSE ${fixture})
+  file(COPY ${RBM_SOURCE_DIR}/tests/data/decomposedTwist/np2/ DESTINATION ${fixture})
+  file(COPY ${RBM_SOURCE_DIR}/tutorials/cube/system/fvSchemes ${RBM_SOURCE_DIR}/tutorials/cube/system/fvSolution
+       DESTINATION ${fixture}/system)
+  file(REMOVE_RECURSE ${rbmCase})
+  copyCaseInputs(${fixture} ${rbmCase})
+  runIn(${rbmCase} 0 rbmMoveMesh ${RBM_MOVE_MESH} -noVTK)
+  set(gatheredCase ${RBM_WORK_DIR}/gathered)
+  foreach(case ${pluginCase} ${gatheredCase})
+    prepareCase(${fixture} ${case})
+    file(COPY ${fixture}/processor0 ${fixture}/processor1 DESTINATION ${case})
+  endforeach()
+  runOnTwoRanks(${pluginCase} 0 moveDynamicMesh ${moveMesh})
+  expectContains("${moveDynamicMesh_out}" "distributed over 2 processors" "moveDynamicMesh's log")
+  expectLacks("${moveDynamicMesh_out}" "gathered from the processors" "the distributed run's log")
+  set(ENV{RBM_PLUGIN_GATHER} 1)
+  runOnTwoRanks(${gatheredCase} 0 gatheredRun ${moveMesh})
+  unset(ENV{RBM_PLUGIN_GATHER})
+  expectContains("${gatheredRun_out}" "gathered from the processors" "the gathered run's log")
+  expectContains("${gatheredRun_out}" "RBM_PLUGIN_GATHER is set" "the gathered run's log")
+  foreach(time 0.5 1)
+    stepFigures("${rbmMoveMesh_out}" ${time} rbmLine)
+    stepFigures("${moveDynamicMesh_out}" ${time} pluginLine)
+    string(REGEX MATCH "worst quality.*" rbmQuality "${rbmLine}")
+    string(REGEX MATCH "worst quality.*" pluginQuality "${pluginLine}")
+    if(NOT rbmQuality STREQUAL pluginQuality)
+      fail("time ${time}: the distributed run's quality figures differ from rbmMoveMesh's:\n  ${pluginQuality}\n  ${rbmQuality}")
+    endif()
+    foreach(case ${pluginCase} ${gatheredCase})
+      execute_process(COMMAND ${RBM_COMPARE_POINTS} --decomposed ${fixture}/constant/polyMesh
+                              ${rbmCase}/${time}/polyMesh/points ${case} ${time} 2.5e-6
+                      RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
+      message("${case} at ${time} vs rbmMoveMesh: ${out}${err}")
+      if(NOT status EQUAL 0)
+        fail("${case} at ${time}: points differ from rbmMoveMesh's by more than 2.5e-6 of their shortest edge: ${out}${err}")
+      endif()
+    endforeach()
+  endforeach()
+  # A bad coefficient stops every rank with OpenFOAM's FOAM FATAL IO ERROR naming it, before
+  # any step.
+  prepareCase(${fixture} ${pluginCase})
+  file(COPY ${fixture}/processor0 ${fixture}/processor1 DESTINATION ${pluginCase})
+  addMotionSolverEntries(${pluginCase} "rigidBodyMotionSolverCoeffs\n{\n    tolerance bogus;\n}")
+  runOnTwoRanks(${pluginCase} FAIL badCoefficient ${moveMesh})
+  expectContains("${badCoefficient_out}" "FOAM FATAL IO ERROR" "the bad coefficient's output")
+  expectContains("${badCoefficient_out}" "bogus" "the bad coefficient's output")
+  file(GLOB written ${pluginCase}/processor0/0.5)
+  if(written)
+    fail("a run with a bad coefficient wrote ${written}")
+  endif()
 
 elseif(MODE STREQUAL "cyclicChannel")
   # The oscillating channel with its slip sides replaced by a translational cyclic pair, left

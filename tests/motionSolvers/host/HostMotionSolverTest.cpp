@@ -6,6 +6,7 @@
 #include "HostMotionSolver.hpp"
 
 #include "FoamDictionary.hpp"
+#include "HostMeshes.hpp"
 #include "MeshGenerators.hpp"
 #include "MotionSolverRegistry.hpp"
 #include "PetscTestEnvironment.hpp"
@@ -21,18 +22,7 @@
 namespace rbm::motion {
 namespace {
 
-host::HostMesh toHostMesh(const PolyMesh& mesh)
-{
-    host::HostMesh host;
-    for (const Vector3& p : mesh.points) host.points.insert(host.points.end(), {p.x, p.y, p.z});
-    host.faceOffsets.assign(mesh.faceOffsets.begin(), mesh.faceOffsets.end());
-    host.faceVertices.assign(mesh.facePoints.begin(), mesh.facePoints.end());
-    host.owner.assign(mesh.owner.begin(), mesh.owner.end());
-    host.neighbour.assign(mesh.neighbour.begin(), mesh.neighbour.end());
-    for (const Patch& patch : mesh.patches)
-        host.patches.push_back({patch.name, patch.type, patch.inGroups, patch.startFace, patch.faceCount});
-    return host;
-}
+using rbm::test::toHostMesh;
 
 // Box [0,4]×[0,3]×[0,2]: xMin moves by (0.3, 0.1, 0) (prescribed), xMax fixed, yMin a slip wall
 // (normal -y), zMin a symmetry plane (normal -z, mirror), yMax and zMax free.
