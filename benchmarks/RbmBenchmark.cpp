@@ -84,6 +84,24 @@ void copyNumbers(Record& to, const Record* from, const std::vector<std::pair<std
     for (const auto& [toKey, fromKey] : keys) to.set(toKey, from->number(fromKey));
 }
 
+// The reports of the results so far: fits and targets computed on a copy; `finished` false
+// marks the files as partial (written after each decomposed run, so a run stopped during a
+// long one keeps what it measured).
+std::string writeReports(Results results, const Options& options, double petscInitSeconds, double petscInitCpuSeconds,
+                         bool finished)
+{
+    results.machine.set("petscInitSeconds", petscInitSeconds);
+    results.machine.set("loadAverageAtEnd", loadAverage());
+    results.machine.set(finished ? "finished" : "partialAt", nowIso());
+    computeFits(results);
+    evaluateTargets(results, std::isfinite(petscInitSeconds) ? petscInitSeconds : 0.0,
+                    std::isfinite(petscInitCpuSeconds) ? petscInitCpuSeconds : 0.0);
+    const std::string markdown = markdownReport(results, options);
+    if (!options.markdown.empty()) writeText(options.markdown, markdown);
+    if (!options.json.empty()) writeText(options.json, jsonReport(results, options));
+    return markdown;
+}
+
 int runBenchmark(const Options& options)
 {
     fs::path workDir = options.workDir;
@@ -236,6 +254,7 @@ int runBenchmark(const Options& options)
                              record.text("openfoamRankPeaksMiB") + " MiB, exit " +
                              count(record.number("openfoamExitCode")));
                     results.decomposed.push_back(record);
+                    writeReports(results, options, petscInitSeconds, petscInitCpuSeconds, false);
                 }
             }
 
@@ -321,17 +340,7 @@ int runBenchmark(const Options& options)
         }
     }
 
-    results.machine.set("petscInitSeconds", petscInitSeconds);
-    results.machine.set("loadAverageAtEnd", loadAverage());
-    results.machine.set("finished", nowIso());
-    computeFits(results);
-    evaluateTargets(results, std::isfinite(petscInitSeconds) ? petscInitSeconds : 0.0,
-                    std::isfinite(petscInitCpuSeconds) ? petscInitCpuSeconds : 0.0);
-
-    const std::string markdown = markdownReport(results, options);
-    std::cout << markdown;
-    if (!options.markdown.empty()) writeText(options.markdown, markdown);
-    if (!options.json.empty()) writeText(options.json, jsonReport(results, options));
+    std::cout << writeReports(results, options, petscInitSeconds, petscInitCpuSeconds, true);
     if (!options.keep) fs::remove_all(workDir);
     else progress("work folder kept: " + workDir.string());
 

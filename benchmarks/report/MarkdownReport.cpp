@@ -26,6 +26,9 @@ std::string markdownReport(const Results& results, const Options& options)
         << machine.text("petsc") << ", rbm commit " << machine.text("gitCommit")
         << (machine.flag("gitDirty") ? " with uncommitted changes" : "") << ". OpenFOAM: "
         << (machine.text("openfoam").empty() ? "not used" : machine.text("openfoam")) << ".\n\n";
+    if (machine.has("partialAt"))
+        out << "**Partial report**, written at " << machine.text("partialAt")
+            << " after a decomposed run; the benchmark had not finished.\n\n";
     out << "N = RBM nodes (2D: nodes of one plane; 3D: mesh points). Times in seconds, one child process per run;\n"
            "*1st solve* includes the factorisation or preconditioner set-up, *repeat* is the same solve again with\n"
            "the matrices kept (the cost of a further time step); *step* = read + graph + problem + assembly +\n"
