@@ -31,13 +31,15 @@ const char* usage =
     "                    [--quick] [--openfoam auto|off] [--whole-process auto|off] [--pitching-steps N]\n"
     "                    [--pitching-nonlinear-steps N] [--run-timeout SECONDS]\n"
     "                    [--memory-limit-gb G] [--diffusivity inverseDistance|uniform] [--airfoil DIR]\n"
-    "                    [--work-dir DIR] [--keep]\n"
+    "                    [--work-dir DIR] [--keep] [--ranks 2,4]\n"
     "  --quick: sizes 1e4 (unless --sizes), 10 pitching steps (linearized only), no OpenFOAM, no rbmMoveMesh runs.\n"
     "  Variants: decoupled, linearized, newton, localGlobal, reducedNewton, decoupledLinearized, linearizedAssembled\n"
     "  (the linearized system assembled: direct in 2D and small 3D, else CG + GAMG), linearizedMatrixFree\n"
     "  ('linearized' takes the automatic choice: direct in 2D, matrix-free in 3D).\n"
     "  Sizes: RBM nodes (2D: nodes per plane) for the box-with-hole cases, cells for twist3D;\n"
-    "  the airfoil mesh has one size.\n";
+    "  the airfoil mesh has one size.\n"
+    "  --ranks: twist3D also decomposed (decomposePar, method simple) over each rank count, moved by\n"
+    "  mpirun -np N rbmMoveMesh -parallel and mpirun -np N moveMesh -parallel (OpenFOAM needed).\n";
 
 Options parseOptions(int argc, char** argv)
 {
@@ -92,6 +94,12 @@ Options parseOptions(int argc, char** argv)
             options.airfoilDir = value();
         } else if (arg == "--work-dir") {
             options.workDir = value();
+        } else if (arg == "--ranks") {
+            options.ranks.clear();
+            for (const std::string& item : splitList(value())) {
+                options.ranks.push_back(std::stoi(item));
+                if (options.ranks.back() < 2) throw std::invalid_argument("--ranks: counts of at least 2");
+            }
         } else if (arg == "--keep") {
             options.keep = true;
         } else if (arg == "--help" || arg == "-h") {

@@ -27,6 +27,7 @@ struct Options {
     fs::path workDir;
     bool keep = false;
     std::string diffusivity = "inverseDistance";
+    std::vector<int> ranks;            // --ranks: twist3D decomposed over each count too
     std::string commandLine;
 };
 

@@ -34,6 +34,7 @@
 #include "BenchmarkCases.hpp"
 #include "CaseFiles.hpp"
 #include "ChildTask.hpp"
+#include "DecomposedMoveMesh.hpp"
 #include "JsonReport.hpp"
 #include "Machine.hpp"
 #include "MarkdownReport.hpp"
@@ -55,6 +56,7 @@
 #include <iostream>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace rbm::benchmark {
@@ -64,6 +66,40 @@ namespace {
 void progress(const std::string& text)
 {
     std::cerr << "[rbmBenchmark " << nowIso().substr(11, 8) << "] " << text << std::endl;
+}
+
+// The last record of `records` for this case and size, if any.
+const Record* sameCase(const std::vector<Record>& records, const std::string& caseName, double nodes)
+{
+    const Record* found = nullptr;
+    for (const Record& record : records)
+        if (record.text("case") == caseName && record.number("nodes") == nodes) found = &record;
+    return found;
+}
+
+// Copies numbers from `from` (when there) into `to`: pairs {key in to, key in from}.
+void copyNumbers(Record& to, const Record* from, const std::vector<std::pair<std::string, std::string>>& keys)
+{
+    if (!from) return;
+    for (const auto& [toKey, fromKey] : keys) to.set(toKey, from->number(fromKey));
+}
+
+// The reports of the results so far: fits and targets computed on a copy; `finished` false
+// marks the files as partial (written after each decomposed run, so a run stopped during a
+// long one keeps what it measured).
+std::string writeReports(Results results, const Options& options, double petscInitSeconds, double petscInitCpuSeconds,
+                         bool finished)
+{
+    results.machine.set("petscInitSeconds", petscInitSeconds);
+    results.machine.set("loadAverageAtEnd", loadAverage());
+    results.machine.set(finished ? "finished" : "partialAt", nowIso());
+    computeFits(results);
+    evaluateTargets(results, std::isfinite(petscInitSeconds) ? petscInitSeconds : 0.0,
+                    std::isfinite(petscInitCpuSeconds) ? petscInitCpuSeconds : 0.0);
+    const std::string markdown = markdownReport(results, options);
+    if (!options.markdown.empty()) writeText(options.markdown, markdown);
+    if (!options.json.empty()) writeText(options.json, jsonReport(results, options));
+    return markdown;
 }
 
 int runBenchmark(const Options& options)
@@ -172,15 +208,54 @@ int runBenchmark(const Options& options)
                                                "reducedNewton", boundaryField, 1);
                 record.set("nodes", nodes);
                 record.set("cells", meshIo.number("cells"));
-                for (const Record& openfoamRun : results.openfoam) {
-                    if (openfoamRun.text("case") != caseName || openfoamRun.number("nodes") != nodes) continue;
-                    record.set("openfoamWallSeconds", openfoamRun.number("wallSeconds"));
-                    record.set("openfoamCpuSeconds", openfoamRun.number("cpuSeconds"));
-                    record.set("openfoamPeakMemoryMiB", openfoamRun.number("peakMemoryMiB"));
-                }
+                copyNumbers(record, sameCase(results.openfoam, caseName, nodes),
+                            {{"openfoamWallSeconds", "wallSeconds"},
+                             {"openfoamCpuSeconds", "cpuSeconds"},
+                             {"openfoamPeakMemoryMiB", "peakMemoryMiB"}});
                 progress("    " + seconds(record.number("wallSeconds")) + " s, " + count(record.number("peakMemoryMiB")) +
                          " MiB, exit " + count(record.number("exitCode")));
                 results.wholeProcess.push_back(record);
+            }
+            // Issue 25's distributed rbmMoveMesh: the same case decomposed over N ranks, both
+            // programs on the same decomposition (DecomposedMoveMesh.hpp), beside the serial runs.
+            if (caseName == "twist3D" && openfoam.available && fs::exists(rbmMoveMesh)) {
+                for (const int ranks : options.ranks) {
+                    progress("  twist3D " + sizeText + ": decomposed over " + std::to_string(ranks) + " ranks");
+                    DecomposedRunInput input;
+                    input.caseName = caseName;
+                    input.polyMeshSource = polyMeshSource;
+                    input.boundaryField = boundaryField;
+                    input.diffusivity = options.diffusivity;
+                    input.rbmMoveMesh = rbmMoveMesh;
+                    input.logDir = logDir;
+                    const Record* serialRbm = sameCase(results.wholeProcess, caseName, nodes);
+                    if (serialRbm && serialRbm->number("exitCode") == 0) input.serialRbmCase = caseDir / "rbm-defaults";
+                    Record record = runDecomposedMoveMesh(openfoam, input, caseDir / ("np" + std::to_string(ranks)), ranks);
+                    record.set("nodes", nodes);
+                    record.set("cells", meshIo.number("cells"));
+                    copyNumbers(record, serialRbm,
+                                {{"rbmSerialPeakMiB", "peakMemoryMiB"},
+                                 {"rbmSerialWallSeconds", "wallSeconds"},
+                                 {"rbmSerialCpuSeconds", "cpuSeconds"},
+                                 {"rbmSerialMaxNonOrthogonality", "maxNonOrthogonality"},
+                                 {"rbmSerialInvertedCells", "invertedCells"}});
+                    copyNumbers(record, sameCase(results.openfoam, caseName, nodes),
+                                {{"openfoamSerialPeakMiB", "peakMemoryMiB"},
+                                 {"openfoamSerialWallSeconds", "wallSeconds"},
+                                 {"openfoamSerialCpuSeconds", "cpuSeconds"},
+                                 {"openfoamSerialMaxNonOrthogonality", "maxNonOrthogonality"},
+                                 {"openfoamSerialInvertedCells", "invertedCells"}});
+                    record.set("rbmRankPeakOverSerial", record.number("rbmRankPeakMaxMiB") / record.number("rbmSerialPeakMiB"));
+                    record.set("openfoamRankPeakOverSerial",
+                               record.number("openfoamRankPeakMaxMiB") / record.number("openfoamSerialPeakMiB"));
+                    progress("    rbm " + seconds(record.number("rbmWallSeconds")) + " s, ranks " +
+                             record.text("rbmRankPeaksMiB") + " MiB, exit " + count(record.number("rbmExitCode")) +
+                             "; moveMesh " + seconds(record.number("openfoamWallSeconds")) + " s, ranks " +
+                             record.text("openfoamRankPeaksMiB") + " MiB, exit " +
+                             count(record.number("openfoamExitCode")));
+                    results.decomposed.push_back(record);
+                    writeReports(results, options, petscInitSeconds, petscInitCpuSeconds, false);
+                }
             }
 
             if (caseName == "airfoil") {
@@ -265,17 +340,7 @@ int runBenchmark(const Options& options)
         }
     }
 
-    results.machine.set("petscInitSeconds", petscInitSeconds);
-    results.machine.set("loadAverageAtEnd", loadAverage());
-    results.machine.set("finished", nowIso());
-    computeFits(results);
-    evaluateTargets(results, std::isfinite(petscInitSeconds) ? petscInitSeconds : 0.0,
-                    std::isfinite(petscInitCpuSeconds) ? petscInitCpuSeconds : 0.0);
-
-    const std::string markdown = markdownReport(results, options);
-    std::cout << markdown;
-    if (!options.markdown.empty()) writeText(options.markdown, markdown);
-    if (!options.json.empty()) writeText(options.json, jsonReport(results, options));
+    std::cout << writeReports(results, options, petscInitSeconds, petscInitCpuSeconds, true);
     if (!options.keep) fs::remove_all(workDir);
     else progress("work folder kept: " + workDir.string());
 

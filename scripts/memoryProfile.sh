@@ -35,11 +35,9 @@ commit=$(profileCommit "$here" "${MEMORY_COMMIT:-}")
 profileHeading "Memory profile of \`$(basename "$program") -case $case -noVTK\` (OMP_NUM_THREADS=$OMP_NUM_THREADS, valgrind massif):" \
     "rbm $commit, $(date -u +%Y-%m-%d), $points points; whole process without valgrind: peak $((maxRssKiB / 1024)) MiB (VmHWM)." \
     "$data.log"
-# The peak snapshot's heap tree: every leaf (an allocation site's bytes, or massif's "in N
-# places" remainder) goes to the item of the first frame, from the allocation outwards, that
-# names one; the items are disjoint and add up to the heap at the peak.
-awk -v points="$points" '
-function itemOf(frame) {
+# The peak snapshot's heap tree by item (scripts/massifPeakItems.awk): each leaf goes to the item
+# of the first frame, from the allocation outwards, that itemOf names.
+items='function itemOf(frame) {
     if (frame ~ /ReducedHessian3D|ReducedEnergy::ReducedEnergy|PlanarReducedKernels/) return "reduced Hessian and energy: per-node data (ReducedHessian3D)"
     if (frame ~ /ThreeVectorMultigrid|buildSmoothedAggregation|SmoothedAggregation/) return "K'"'"'s multigrid: finest values in single precision, transfers, coarse levels, cycle vectors"
     if (frame ~ /coupledDisplacementLaplacian/) return "K in double precision (LaplacianPreconditioner)"
@@ -60,29 +58,6 @@ function itemOf(frame) {
     if (frame ~ /BoundaryPath|RigidBodyMotionSolver|MotionSolver|readVectorList|readPointVectorField|MoveMeshRun|PointPatch/) return "point arrays: mesh points, points0, displacement, target, state"
     return ""
 }
-/^snapshot=/ { snapshot = $0; sub(/snapshot=/, "", snapshot) }
-/^heap_tree=peak/ { inPeak = 1; next }
-/^snapshot=/ && inPeak { inPeak = 0 }
-inPeak && /^ *n[0-9]+: / {
-    match($0, /^ */); depth = RLENGTH
-    line = substr($0, depth + 1)
-    split(line, field, " ")
-    children = field[1]; sub(/^n/, "", children); sub(/:$/, "", children)
-    bytes = field[2]
-    frame[depth] = line
-    if (children + 0 == 0) {
-        item = ""
-        for (d = 1; d <= depth && item == ""; ++d) item = itemOf(frame[d])
-        if (item == "") item = "other (below massif'"'"'s threshold, libraries, MPI and PETSc)"
-        total[item] += bytes; heap += bytes
-    }
-}
-END {
-    printf "| item at the peak (heap) | MiB | bytes per point | MiB at 1 030 301 points |\n|---|---:|---:|---:|\n"
-    n = 0
-    for (item in total) keys[++n] = item
-    for (i = 1; i <= n; ++i) for (j = i + 1; j <= n; ++j) if (total[keys[j]] > total[keys[i]]) { t = keys[i]; keys[i] = keys[j]; keys[j] = t }
-    for (i = 1; i <= n; ++i)
-        printf "| %s | %.1f | %.0f | %.0f |\n", keys[i], total[keys[i]] / 1048576, total[keys[i]] / points, total[keys[i]] / points * 1030301 / 1048576
-    printf "| **heap at the peak** | **%.1f** | **%.0f** | **%.0f** |\n", heap / 1048576, heap / points, heap / points * 1030301 / 1048576
-}' "$data"
+'
+awk -v points="$points" -v scaleTo=1030301 -v other="other (below massif's threshold, libraries, MPI and PETSc)" \
+    -f <(printf '%s\n' "$items") -f "$here/scripts/massifPeakItems.awk" "$data"

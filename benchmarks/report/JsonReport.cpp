@@ -15,6 +15,7 @@ std::string jsonReport(const Results& results, const Options& options)
     out << "  \"wholeProcess\": " << jsonArray(results.wholeProcess, "  ") << ",\n";
     out << "  \"pitching\": " << jsonArray(results.pitching, "  ") << ",\n";
     out << "  \"openfoam\": " << jsonArray(results.openfoam, "  ") << ",\n";
+    out << "  \"decomposed\": " << jsonArray(results.decomposed, "  ") << ",\n";
     out << "  \"targets\": " << jsonArray(results.targets, "  ") << "\n}\n";
     return out.str();
 }

@@ -26,6 +26,9 @@ std::string markdownReport(const Results& results, const Options& options)
         << machine.text("petsc") << ", rbm commit " << machine.text("gitCommit")
         << (machine.flag("gitDirty") ? " with uncommitted changes" : "") << ". OpenFOAM: "
         << (machine.text("openfoam").empty() ? "not used" : machine.text("openfoam")) << ".\n\n";
+    if (machine.has("partialAt"))
+        out << "**Partial report**, written at " << machine.text("partialAt")
+            << " after a decomposed run; the benchmark had not finished.\n\n";
     out << "N = RBM nodes (2D: nodes of one plane; 3D: mesh points). Times in seconds, one child process per run;\n"
            "*1st solve* includes the factorisation or preconditioner set-up, *repeat* is the same solve again with\n"
            "the matrices kept (the cost of a further time step); *step* = read + graph + problem + assembly +\n"
@@ -128,6 +131,50 @@ std::string markdownReport(const Results& results, const Options& options)
                 << seconds(record.number("openfoamWallSeconds")) << " | " << seconds(record.number("openfoamCpuSeconds"))
                 << " | " << count(record.number("openfoamPeakMemoryMiB")) << " | "
                 << fixed(record.number("cpuSeconds") / record.number("openfoamCpuSeconds"), 2) << " |\n";
+        }
+        out << "\n";
+    }
+    if (!results.decomposed.empty()) {
+        out << "## twist3D decomposed over N ranks (decomposePar, method simple), whole programs\n\n"
+               "`mpirun -np N rbmMoveMesh -case <case> -parallel -noVTK` (each rank reads and writes its processor "
+               "folder only; the serial run's dictionary: reduced Newton, `floatingPatches (sides)`, the rest "
+               "default) and `mpirun -np N moveMesh -case <case> -parallel` on the same processor folders, one step "
+               "each. Per-rank peak = each rank's VmHWM at exit (its wrapper's wait4: ru_maxrss); largest and sum over "
+               "the ranks; serial = the single-process runs above. CPU = the ranks' user + system time, summed. With "
+               "more ranks than cores the ranks share them (oversubscribed): wall times then include waiting. "
+               "difference = max over every processor's points of |decomposed − serial rbmMoveMesh| / the point's "
+               "shortest edge. Non-orthogonality and inverted cells: the processors' points gathered into the whole "
+               "mesh and evaluated as the serial results are (rbm's own step line in brackets).\n\n";
+        out << "| cells | ranks | decomposition | rbm wall s | rbm CPU s | rbm rank peaks MiB | rbm largest / sum MiB | rbm "
+               "serial MiB | largest / serial | moveMesh wall s | moveMesh CPU s | moveMesh rank peaks MiB | moveMesh "
+               "largest / sum MiB | moveMesh serial MiB | largest / serial | difference to serial | rbm max non-orth "
+               "(step line) | rbm inverted | moveMesh max non-orth | moveMesh inverted |\n";
+        out << "|---:|---:|---|---:|---:|---|---:|---:|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+        for (const Record& record : results.decomposed) {
+            std::ostringstream difference;
+            difference << std::setprecision(2) << record.number("rbmMaxDifferenceToSerialPerShortestEdge");
+            out << "| " << count(record.number("cells")) << " | " << count(record.number("ranks")) << " | "
+                << record.text("decomposition") << " | ";
+            if (record.number("decomposeParExitCode") != 0) {
+                out << record.text("error") << " ||||||||||||||||\n";
+                continue;
+            }
+            out << seconds(record.number("rbmWallSeconds")) << " | " << seconds(record.number("rbmCpuSeconds")) << " | "
+                << record.text("rbmRankPeaksMiB") << " | " << count(record.number("rbmRankPeakMaxMiB")) << " / "
+                << count(record.number("rbmRankPeakSumMiB")) << " | " << count(record.number("rbmSerialPeakMiB")) << " | "
+                << fixed(record.number("rbmRankPeakOverSerial"), 3) << " | " << seconds(record.number("openfoamWallSeconds"))
+                << " | " << seconds(record.number("openfoamCpuSeconds")) << " | " << record.text("openfoamRankPeaksMiB")
+                << " | " << count(record.number("openfoamRankPeakMaxMiB")) << " / "
+                << count(record.number("openfoamRankPeakSumMiB")) << " | " << count(record.number("openfoamSerialPeakMiB"))
+                << " | " << fixed(record.number("openfoamRankPeakOverSerial"), 3) << " | " << difference.str() << " | "
+                << fixed(record.number("rbm.maxNonOrthogonality"), 2) << " ("
+                << fixed(record.number("rbmLogMaxNonOrthogonality"), 2) << ") | " << count(record.number("rbm.invertedCells"))
+                << " | " << fixed(record.number("openfoam.maxNonOrthogonality"), 2) << " | "
+                << count(record.number("openfoam.invertedCells")) << " |\n";
+            for (const char* program : {"rbm", "openfoam"}) {
+                const std::string error = record.text(std::string(program) + "Error") + record.text(std::string(program) + "CheckError");
+                if (!error.empty()) out << "\n" << program << ", " << count(record.number("ranks")) << " ranks: " << error << "\n";
+            }
         }
         out << "\n";
     }

@@ -15,6 +15,7 @@ struct Results {
     std::vector<Record> wholeProcess;
     std::vector<Record> pitching;
     std::vector<Record> openfoam;
+    std::vector<Record> decomposed;  // twist3D over N ranks, both programs (--ranks)
     std::vector<Record> fits;
     std::vector<Record> targets;
 };

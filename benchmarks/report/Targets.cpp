@@ -129,6 +129,21 @@ void evaluateTargets(Results& results, double petscInitSeconds, double petscInit
         addTarget(results, "hex cube 1e6 cells twisted 30°: one coupled step < 60 s and < 4 GB", "", -1,
                   "twist3D at 1e6 cells not run (or every coupled variant failed / was skipped)");
     }
+    // 5. Issue 25, the decomposed rbmMoveMesh: each rank holds its part only, so its largest rank's
+    // peak against the serial run's: ≤ 0.6 on 2 ranks, ≤ 0.35 on 4.
+    for (const Record& record : results.decomposed) {
+        const double ranks = record.number("ranks");
+        const double limit = ranks == 2 ? 0.6 : (ranks == 4 ? 0.35 : nan);
+        if (!std::isfinite(limit)) continue;
+        const double ratio = record.number("rbmRankPeakOverSerial");
+        addTarget(results,
+                  "twist3D " + count(record.number("cells")) + " cells on " + count(ranks) +
+                      " ranks, rbmMoveMesh -parallel: largest rank peak ≤ " + fixed(limit, 2) + "× the serial peak",
+                  count(record.number("rbmRankPeakMaxMiB")) + " MiB / " + count(record.number("rbmSerialPeakMiB")) +
+                      " MiB = " + fixed(ratio, 3) + " (ranks: " + record.text("rbmRankPeaksMiB") + " MiB)",
+                  std::isfinite(ratio) ? (ratio <= limit ? 1 : 0) : -1,
+                  "whole processes, each rank's VmHWM at exit (wait4 of the rank's wrapper)");
+    }
 }
 
 } // namespace rbm::benchmark

@@ -1,6 +1,8 @@
 #include "ChildTask.hpp"
 
+#include "DecomposedCheckTask.hpp"
 #include "MeshIoTask.hpp"
+#include "MpiRun.hpp"
 #include "PitchingTask.hpp"
 #include "Process.hpp"
 #include "VariantTask.hpp"
@@ -16,6 +18,8 @@ namespace rbm::benchmark {
 
 int runOne(const std::vector<std::string>& args)
 {
+    // One rank's wrapper under mpirun (MpiRun.hpp): it only waits for the program.
+    if (!args.empty() && args[0] == "rankUsage") return runRankUsage(std::vector<std::string>(args.begin() + 1, args.end()));
     // The parent's --run-timeout: SIGALRM ends a run that takes longer.
     if (const char* timeout = std::getenv("RBM_BENCHMARK_RUN_TIMEOUT"))
         if (std::atoi(timeout) > 0) alarm(static_cast<unsigned>(std::atoi(timeout)));
@@ -27,6 +31,8 @@ int runOne(const std::vector<std::string>& args)
             record = runVariantTask(args[1], args[2], args[3], std::stod(args[4]));
         } else if (args.size() >= 5 && args[0] == "pitching") {
             record = runPitchingTask(args[1], std::stoi(args[2]), args[3], args[4]);
+        } else if (args.size() >= 6 && args[0] == "decomposedCheck") {
+            record = runDecomposedCheckTask(args[1], args[2], std::stoi(args[3]), args[4], args[5]);
         } else {
             std::cerr << "rbmBenchmark --run-one: unknown task\n";
             return 2;
