@@ -32,7 +32,7 @@ PartLaplacian::PartLaplacian(const RbmProblem& problem, std::span<const double> 
         throw std::invalid_argument("PartLaplacian: one rank's part of a 3D problem is needed");
     if (laplacian.size() != static_cast<std::size_t>(problem.blockPattern().blockCount()))
         throw std::invalid_argument("PartLaplacian: one Laplacian entry per block of the pattern expected");
-    char cycle[16] = "local";
+    char cycle[16] = "gamg";
     RBM_CHECK_PETSC(PetscOptionsGetString(nullptr, "rbm_reduced_", "-part_cycle", cycle, sizeof(cycle), nullptr));
     const std::string cycleName = cycle;
     if (cycleName != "local" && cycleName != "gamg")

@@ -17,11 +17,13 @@
 // is M itself, one cycle per component: the Newton CG is flexible. On the 2.2·10⁵-cell cube
 // on 2 ranks the step took 13 s with one cycle and 60 s solving to 10⁻⁴ (a loaded machine).
 //
-// C is by default block Jacobi over the ranks: rbm's own smoothed-aggregation cycle
-// (ThreeVectorMultigrid, the serial 3D solver's) of the block of K that couples the rank's
-// owned unknowns, the couplings to other ranks left out. It needs no matrix over the ranks:
-// PETSc's GAMG of the whole K (-rbm_reduced_part_cycle gamg) held about 900 bytes a node more
-// (its aggregation on the squared graph), and the assembled K 330 more.
+// C is by default one cycle of PETSc's GAMG of the whole K. With -rbm_reduced_part_cycle local
+// it is block Jacobi over the ranks: rbm's own smoothed-aggregation cycle (ThreeVectorMultigrid,
+// the serial 3D solver's) of the block of K that couples the rank's owned unknowns, the
+// couplings to other ranks left out, and no matrix over the ranks is assembled. Measured on the
+// 10⁶-cell cube turned 30° on 2 ranks (a loaded machine): GAMG 1 560 MiB per rank, 5 Newton
+// iterations, 65 s; local 1 386 MiB, 17 Newton iterations (the weaker cycle makes the truncated
+// Newton steps worse), 452 s.
 //
 // Unknown rows: each rank's owned unknown nodes in their part order, after the lower ranks'
 // (one contiguous range per rank); a ghost unknown's row comes from its owner through the
@@ -61,8 +63,8 @@ private:
     std::vector<PetscInt> unknownRows() const;
     void assemble(std::span<const double> laplacian);
     void slidingScales(std::span<const double> laplacian);
-    // The cycle C: rbm's smoothed aggregation of the rank's own block of K (the default,
-    // -rbm_reduced_part_cycle local) or PETSc's GAMG of the whole K (-rbm_reduced_part_cycle gamg).
+    // The cycle C: PETSc's GAMG of the whole K (the default, -rbm_reduced_part_cycle gamg) or
+    // rbm's smoothed aggregation of the rank's own block of K (-rbm_reduced_part_cycle local).
     void setUpLocalCycle(std::span<const double> laplacian);
     void setUpCycle();
     void setUpSolver(double relativeTolerance, bool solveToTolerance);
@@ -81,12 +83,12 @@ private:
     bool innerSolve_ = true;
     PetscMat stiffness_;   // scalar K, owned unknown rows
     PetscMat operator_;    // A, a shell on 3 rows per owned unknown
-    PetscKsp cycle_;       // one multigrid cycle of K (preonly + GAMG), -rbm_reduced_part_cycle gamg
-    // The default cycle: of K's block of the owned unknowns (its CSR, which the cycle reads).
+    PetscKsp cycle_;       // one multigrid cycle of K (preonly + GAMG), the default
+    // -rbm_reduced_part_cycle local: of K's block of the owned unknowns (its CSR, which the cycle reads).
     std::vector<int> localOffsets_, localColumns_;
     std::vector<double> localValues_;
     std::unique_ptr<ThreeVectorMultigrid> localCycle_;
-    bool useLocalCycle_ = true;
+    bool useLocalCycle_ = false;
     PetscKsp solver_;      // CG on A preconditioned by M (preonly: M alone)
     PetscVec componentIn_, componentOut_;  // one component, owned unknown rows
     mutable PetscVec projected_;            // P x (product) or P r (preconditioner)
