@@ -95,9 +95,7 @@ bool HostPartMotionSolver::solvesVariant(const std::string& coefficientsText, co
     try {
         const motion::RigidBodyMotionOptions options =
             motion::RigidBodyMotionOptions::read(io::Dictionary::parseText(coefficientsText, coefficientsFile));
-        return options.coupling == motion::RbmCoupling::coupled &&
-               options.formulation == motion::RbmFormulation::nonlinear &&
-               options.algorithm == motion::RbmAlgorithm::reducedNewton;
+        return motion::partsSolve(options);
     } catch (const InputError& error) {
         throw HostInputError(error.file(), error.line(), error.message());
     }

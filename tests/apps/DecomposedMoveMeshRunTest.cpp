@@ -143,6 +143,21 @@ TEST(DecomposedMoveMeshRun, BadInputOnOneProcessorStopsEveryRankAndWritesNothing
             EXPECT_FALSE(fs::exists(caseDir / ("processor" + std::to_string(p)) / time)) << p << " " << time;
 }
 
+TEST(DecomposedMoveMeshRun, SubStepsAreRefusedNamingTheDictionary)
+{
+    const TempDir work("subSteps");
+    const fs::path caseDir = work.path() / "case";
+    fs::copy(fixture(2), caseDir, fs::copy_options::recursive);
+    const fs::path dynamicMeshDict = caseDir / "constant" / "dynamicMeshDict";
+    rbm::test::writeText(dynamicMeshDict,
+                         rbm::test::readText(dynamicMeshDict) + "rigidBodyMotionSolverCoeffs { subSteps 4; }\n");
+    const ProgramRun run = runDecomposed(caseDir, 2);
+    EXPECT_EQ(run.exitStatus, 2) << run.output;
+    EXPECT_NE(run.output.find("subSteps 4 is not applied on a decomposed case"), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("dynamicMeshDict"), std::string::npos) << run.output;
+    EXPECT_FALSE(fs::exists(caseDir / "processor0" / "0.5"));
+}
+
 TEST(DecomposedMoveMeshRun, RanksMustMatchTheProcessorFolders)
 {
     const TempDir work("rankCount");

@@ -29,10 +29,13 @@ namespace {
 void refuseWhatPartsDoNotSolve(const RigidBodyMotionOptions& options, const PolyMesh& localMesh,
                                const BoundaryDescription& boundary)
 {
-    const bool reducedNewton = options.coupling == RbmCoupling::coupled &&
-                               options.formulation == RbmFormulation::nonlinear &&
-                               options.algorithm == RbmAlgorithm::reducedNewton;
-    if (!reducedNewton)
+    if (!options.automaticSubSteps() && options.subSteps > 1)
+        throw InputError(options.file, 0,
+                         "rigidBodyMotionSolver: subSteps " + std::to_string(options.subSteps) +
+                             " is not applied on a decomposed case (rbmMoveMesh -parallel solves each step whole); "
+                             "remove it (the default solver needs no sub-steps) or run the reconstructed case "
+                             "without -parallel");
+    if (!partsSolve(options))
         throw InputError(options.file, 0,
                          "rigidBodyMotionSolver: a decomposed case (rbmMoveMesh -parallel) is solved by the default "
                          "variant only (coupling coupled, formulation nonlinear, algorithm reducedNewton), not coupling " +
@@ -71,6 +74,12 @@ bool anyRank(bool mine, MPI_Comm communicator)
 }
 
 } // namespace
+
+bool partsSolve(const RigidBodyMotionOptions& options)
+{
+    return options.coupling == RbmCoupling::coupled && options.formulation == RbmFormulation::nonlinear &&
+           options.algorithm == RbmAlgorithm::reducedNewton && (options.automaticSubSteps() || options.subSteps <= 1);
+}
 
 void checkPartIsSolvable(const io::Dictionary& coefficients, const PolyMesh& localMesh,
                          const BoundaryDescription& boundary)

@@ -38,6 +38,10 @@
 
 namespace rbm::motion {
 
+// Whether a part solves these options: the default variant (coupling coupled, formulation
+// nonlinear, algorithm reducedNewton) with subSteps auto or 1 (a part does not divide a step).
+bool partsSolve(const RigidBodyMotionOptions& options);
+
 // The checks PartRigidBodyMotion makes that need no other rank (the variant, 2D, cyclic
 // patches, the names of floatingPatches and of the stiffening's patches), for a front door to
 // make on every rank before the collective set-up: throws rbm::InputError.

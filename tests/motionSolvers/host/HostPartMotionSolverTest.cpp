@@ -152,6 +152,9 @@ TEST(HostPartMotionSolver, SolvesTheDefaultVariantOnly)
     EXPECT_TRUE(host::HostPartMotionSolver::solvesVariant("stiffening none;", coefficientsFile));
     EXPECT_FALSE(host::HostPartMotionSolver::solvesVariant("coupling decoupled;", coefficientsFile));
     EXPECT_FALSE(host::HostPartMotionSolver::solvesVariant("formulation linearized;", coefficientsFile));
+    // A part solves each step whole: sub-steps take the gathered path.
+    EXPECT_FALSE(host::HostPartMotionSolver::solvesVariant("subSteps 4;", coefficientsFile));
+    EXPECT_TRUE(host::HostPartMotionSolver::solvesVariant("subSteps 1;", coefficientsFile));
     EXPECT_FALSE(host::HostPartMotionSolver::solvesVariant("algorithm newton;", coefficientsFile));
     EXPECT_THROW(host::HostPartMotionSolver::solvesVariant("coupling bogus;", coefficientsFile),
                  host::HostInputError);
