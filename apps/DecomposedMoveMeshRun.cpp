@@ -327,6 +327,9 @@ bool DecomposedRun::runStep(int step, int& exitStatus)
         return false;
     }
     const motion::MotionSolveReport solve = motion_->solve(local_.displacement);
+    if (isRankZero())
+        for (const std::string& warning : solve.warnings)
+            err_ << "rbmMoveMesh: warning: time " << name << ": " << warning << '\n';
     const bool finite =
         onEveryRank(std::all_of(local_.displacement.begin(), local_.displacement.end(), isFinite), communicator_) &&
         std::isfinite(solve.residual);

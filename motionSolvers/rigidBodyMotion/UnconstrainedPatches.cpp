@@ -76,20 +76,33 @@ const std::vector<Vector3>& UnconstrainedPatches::slidingNormals(Label patch, st
     return normals;
 }
 
-std::vector<std::string> UnconstrainedPatches::planeWarnings(std::span<const Vector3> points) const
+std::vector<UnconstrainedPatches::PlaneDeparture> UnconstrainedPatches::planeDepartures(
+    std::span<const Vector3> points) const
 {
-    std::vector<std::string> warnings;
+    std::vector<PlaneDeparture> departures;
     for (const FloatingPlane& plane : floatingPlanes_) {
         double farthest = 0.0;
         for (Label point : plane.meshPoints)
             farthest = std::max(farthest, std::abs(dot(points[point] - plane.origin, plane.normal)));
-        if (farthest <= plane.tolerance) continue;
-        std::ostringstream text;
-        text << "patch " << mesh_.patches[static_cast<std::size_t>(plane.patch)].name
-             << " (in floatingPatches) was planar; its points now leave its plane by up to " << farthest
-             << " (remove it from floatingPatches to keep it in its plane)";
-        warnings.push_back(text.str());
+        departures.push_back({plane.patch, farthest, plane.tolerance});
     }
+    return departures;
+}
+
+std::string UnconstrainedPatches::planeWarning(Label patch, double farthest) const
+{
+    std::ostringstream text;
+    text << "patch " << mesh_.patches[static_cast<std::size_t>(patch)].name
+         << " (in floatingPatches) was planar; its points now leave its plane by up to " << farthest
+         << " (remove it from floatingPatches to keep it in its plane)";
+    return text.str();
+}
+
+std::vector<std::string> UnconstrainedPatches::planeWarnings(std::span<const Vector3> points) const
+{
+    std::vector<std::string> warnings;
+    for (const PlaneDeparture& departure : planeDepartures(points))
+        if (departure.farthest > departure.tolerance) warnings.push_back(planeWarning(departure.patch, departure.farthest));
     return warnings;
 }
 

@@ -48,6 +48,16 @@ public:
     // their moved positions) leave its plane by more than 1e-6 of its shortest edge.
     std::vector<std::string> planeWarnings(std::span<const Vector3> points) const;
     bool watchesPlanes() const { return !floatingPlanes_.empty(); }
+    // The same measure per watched patch, for a part that reduces it over the ranks: how far
+    // `points` leave the plane, and the tolerance (1e-6 of the patch's shortest edge here).
+    struct PlaneDeparture {
+        Label patch = -1;
+        double farthest = 0.0;
+        double tolerance = 0.0;
+    };
+    std::vector<PlaneDeparture> planeDepartures(std::span<const Vector3> points) const;
+    // The warning's words for a departure beyond the tolerance.
+    std::string planeWarning(Label patch, double farthest) const;
 
 private:
     struct FloatingPlane {

@@ -143,6 +143,40 @@ TEST(DecomposedMoveMeshRun, BadInputOnOneProcessorStopsEveryRankAndWritesNothing
             EXPECT_FALSE(fs::exists(caseDir / ("processor" + std::to_string(p)) / time)) << p << " " << time;
 }
 
+// Each "patch P ... leave its plane by up to D" warning: P at time T, and D.
+std::vector<std::pair<std::string, double>> planeDepartures(const std::string& output)
+{
+    std::vector<std::pair<std::string, double>> departures;
+    const std::regex line(R"(warning: time (\S+): patch (\S+) \(in floatingPatches\) was planar; its points now leave its plane by up to (\S+))");
+    for (std::sregex_iterator it(output.begin(), output.end(), line), end; it != end; ++it)
+        departures.emplace_back((*it)[1].str() + " " + (*it)[2].str(), std::stod((*it)[3].str()));
+    return departures;
+}
+
+// The floating sides leave their planes; the decomposed run says so as the serial one does,
+// the distance taken over all the ranks' points.
+TEST(DecomposedMoveMeshRun, FloatingPlanesLeftAreWarnedAsInASerialRun)
+{
+    const TempDir work("floating");
+    const fs::path caseDir = work.path() / "case";
+    fs::copy(fixture(4), caseDir, fs::copy_options::recursive);
+    const fs::path dynamicMeshDict = caseDir / "constant" / "dynamicMeshDict";
+    rbm::test::writeText(dynamicMeshDict, rbm::test::readText(dynamicMeshDict) +
+                                              "rigidBodyMotionSolverCoeffs { floatingPatches (xMin xMax yMin yMax); }\n");
+    const ProgramRun decomposed = runDecomposed(caseDir, 4);
+    ASSERT_EQ(decomposed.exitStatus, 0) << decomposed.output;
+    const ProgramRun serial = runSerial(caseDir);
+    ASSERT_EQ(serial.exitStatus, 0) << serial.output;
+    const auto expected = planeDepartures(serial.output);
+    const auto found = planeDepartures(decomposed.output);
+    ASSERT_EQ(expected.size(), 8u) << serial.output;  // four sides at two times
+    ASSERT_EQ(found.size(), expected.size()) << decomposed.output;
+    for (std::size_t k = 0; k < expected.size(); ++k) {
+        EXPECT_EQ(found[k].first, expected[k].first);
+        EXPECT_NEAR(found[k].second, expected[k].second, 1e-4 * expected[k].second) << expected[k].first;
+    }
+}
+
 TEST(DecomposedMoveMeshRun, SubStepsAreRefusedNamingTheDictionary)
 {
     const TempDir work("subSteps");

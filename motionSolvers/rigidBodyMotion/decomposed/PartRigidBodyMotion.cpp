@@ -19,6 +19,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <limits>
 
 namespace rbm::motion {
 
@@ -127,6 +129,30 @@ struct PartRigidBodyMotion::Impl {
         groups = groupPrescribedNodes(classes.prescribingPatch, static_cast<int>(merged.size()));
         warnAboutCurvedUnconstrainedPatches();
         rebuildProblem();
+    }
+
+    // UnconstrainedPatches::planeWarnings over the ranks: a floating patch that was planar (on
+    // each rank that has faces of it) and whose points now leave its plane, by the farthest of
+    // any rank's, beyond the smallest tolerance. The same words on every rank.
+    void warnAboutFloatingPlanes(const std::vector<Vector3>& displacement, std::vector<std::string>& warnings) const
+    {
+        const std::size_t shared = sharedPatchCount(localMesh);
+        std::vector<double> farthest(shared, 0.0), negativeTolerance(shared, -std::numeric_limits<double>::infinity());
+        if (unconstrained.watchesPlanes()) {
+            std::vector<Vector3> moved = localMesh.points;
+            for (std::size_t p = 0; p < moved.size(); ++p) moved[p] += displacement[p];
+            for (const UnconstrainedPatches::PlaneDeparture& departure : unconstrained.planeDepartures(moved)) {
+                farthest[departure.patch] = departure.farthest;
+                negativeTolerance[departure.patch] = -departure.tolerance;
+            }
+        }
+        RBM_CHECK_PETSC(MPI_Allreduce(MPI_IN_PLACE, farthest.data(), static_cast<int>(shared), MPI_DOUBLE, MPI_MAX,
+                                      part.communicator()));
+        RBM_CHECK_PETSC(MPI_Allreduce(MPI_IN_PLACE, negativeTolerance.data(), static_cast<int>(shared), MPI_DOUBLE,
+                                      MPI_MAX, part.communicator()));
+        for (std::size_t p = 0; p < shared; ++p)
+            if (std::isfinite(negativeTolerance[p]) && farthest[p] > -negativeTolerance[p])
+                warnings.push_back(unconstrained.planeWarning(static_cast<Label>(p), farthest[p]));
     }
 
     // The serial solver puts the points of curved unconstrained patches back onto their surface
@@ -253,6 +279,7 @@ MotionSolveReport PartRigidBodyMotion::solve(std::vector<Vector3>& displacement)
         const Label node = nodeOf[point];
         displacement[point] = prescriber[node] == heldNode ? Vector3{} : impl.state.displacement[node];
     }
+    impl.warnAboutFloatingPlanes(displacement, report.warnings);
     report.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     return report;
 }
