@@ -5,7 +5,10 @@
 // (QualityReport) and the thesis' metrics (ThesisQuality).
 //
 //   2D (a cell of a pseudo-2D mesh, a polygon counter-clockwise in its plane): its signed area
-//   is ≤ 0;
+//   is ≤ 0, or one of its edge triangles with apex at its area centroid has a signed area ≤ 0
+//   (the side faces' pyramids of the pseudo-3D cell: a concave cell whose centroid has left it
+//   across an edge keeps a positive area, but OpenFOAM's checkMesh reports "Error in face
+//   pyramids" on it and flow solvers fail there);
 //   3D: its volume is ≤ 0, or one of its face pyramids with apex at the cell centre has a
 //   volume ≤ 0, S_f·(c_f − C)/3 with the face's area vector S_f pointing out of the cell (a
 //   cell folded through itself can keep a positive volume; a pyramid still turns over).
@@ -14,7 +17,12 @@
 
 namespace rbm {
 
-inline bool isInvertedPolygon(double signedArea) { return signedArea <= 0.0; }
+// `smallestEdgeTriangle`: the smallest signed area of the polygon's edge triangles over its
+// centroid (any positive multiple of them, e.g. smallestEdgeTriangle in ThesisQuality.hpp).
+inline bool isInvertedPolygon(double signedArea, double smallestEdgeTriangle)
+{
+    return signedArea <= 0.0 || smallestEdgeTriangle <= 0.0;
+}
 
 // 3 × the volume of the pyramid of a face over a cell centre: `faceArea` is the face's area
 // vector as stored (pointing out of its owner); `ownerSide` is whether the cell is the owner.

@@ -117,7 +117,9 @@ void evaluatePlanarCells(const PseudoTwoDMesh& twoD, std::span<const Vector3> po
 #pragma omp parallel for schedule(static) if (worthThreading(static_cast<std::size_t>(cellCount)))
     for (Label c = 0; c < cellCount; ++c) {
         const auto polygon = planar.cell(c);
-        cellInverted[c] = isInvertedPolygon(polygonSignedArea(polygon, positions));
+        double area = 0.0;
+        const Vector3 centroid = polygonCentroid(polygon, positions, area);
+        cellInverted[c] = isInvertedPolygon(area, smallestEdgeTriangle(polygon, positions, centroid));
         if (polygon.size() == 3) {
             cellValues[c] = triangleMeanRatio(positions[polygon[0]], positions[polygon[1]], positions[polygon[2]]);
         } else if (polygon.size() == 4) {

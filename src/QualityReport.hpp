@@ -50,7 +50,8 @@ struct QualityReport {
     CheckMeshQuality checkMesh;
     ThesisQuality thesis;
 
-    // Inverted cells as the thesis counts them (2D: area <= 0; 3D: a face pyramid <= 0).
+    // Inverted cells (src/InvertedCell.hpp; 2D: area <= 0 or the centroid across an edge; 3D:
+    // a face pyramid or the volume <= 0).
     Label invertedCellCount() const { return thesis.invertedCellCount; }
     // Valid: no inverted cell and none of checkMesh's errors (non-positive volumes, wrong
     // face pyramids, open cells, zero-area faces, faces beyond 90° non-orthogonality).

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 #include <string>
@@ -121,6 +122,18 @@ double polygonSignedArea(std::span<const Label> polygon, std::span<const Vector3
     return 0.5 * twiceArea;
 }
 
+double smallestEdgeTriangle(std::span<const Label> polygon, std::span<const Vector3> positions, const Vector3& centroid)
+{
+    double smallest = std::numeric_limits<double>::infinity();
+    const std::size_t n = polygon.size();
+    for (std::size_t a = 0; a < n; ++a) {
+        const Vector3& from = positions[polygon[a]];
+        const Vector3& to = positions[polygon[(a + 1) % n]];
+        smallest = std::min(smallest, cross2(to - from, centroid - from));
+    }
+    return smallest;
+}
+
 double nonOrthogonalityAngle(const Vector3& ownerCentre, const Vector3& neighbourCentre, const Vector3& normal)
 {
     const Vector3 d = neighbourCentre - ownerCentre;
@@ -163,7 +176,7 @@ ThesisQuality computeThesisQuality2D(const PlanarMesh& mesh, std::span<const Vec
         const auto polygon = mesh.cell(c);
         double area = 0.0;
         centres[c] = polygonCentroid(polygon, positions, area);
-        invertedCell[c] = isInvertedPolygon(area);
+        invertedCell[c] = isInvertedPolygon(area, smallestEdgeTriangle(polygon, positions, centres[c]));
         if (polygon.size() == 3) {
             shapeValue[c] = triangleMeanRatio(positions[polygon[0]], positions[polygon[1]], positions[polygon[2]]);
         } else if (polygon.size() == 4) {

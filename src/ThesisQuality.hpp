@@ -89,6 +89,10 @@ double quadrilateralShape(const Vector3& i, const Vector3& j, const Vector3& k, 
 Vector3 polygonCentroid(std::span<const Label> polygon, std::span<const Vector3> positions, double& signedArea);
 // The same signed area as polygonCentroid's, to the last bit, without the centroid.
 double polygonSignedArea(std::span<const Label> polygon, std::span<const Vector3> positions);
+// Twice the smallest signed area (on x, y) of the triangles (edge a→b, `centroid`) of a
+// counter-clockwise polygon: ≤ 0 when the centroid is on or outside one of its edges, which
+// InvertedCell.hpp counts as inverted (the pseudo-3D cell's side-face pyramids).
+double smallestEdgeTriangle(std::span<const Label> polygon, std::span<const Vector3> positions, const Vector3& centroid);
 
 // Angle in degrees between the centre line (from `ownerCentre` to `neighbourCentre`) and
 // the normal `normal` (pointing from owner to neighbour).

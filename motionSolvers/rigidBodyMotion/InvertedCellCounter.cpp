@@ -53,17 +53,19 @@ Label InvertedCellCounter::countPlanar(std::span<const Vector3> nodeDisplacement
     }
     Label inverted = 0;
     for (Label c = 0; c < planar.cellCount(); ++c) {
-        if (isInvertedPolygon(planar.signedArea(c, positions_))) {
+        const auto polygon = planar.cell(c);
+        double area = 0.0;
+        const Vector3 centroid = polygonCentroid(polygon, positions_, area);
+        if (isInvertedPolygon(area, smallestEdgeTriangle(polygon, positions_, centroid))) {
             ++inverted;
             if (invertedCells) invertedCells->push_back(c);
         }
         if (!wantWorst) continue;
-        const auto cell = planar.cell(c);
-        if (cell.size() == 3)
-            worst = std::min(worst, triangleMeanRatio(positions_[cell[0]], positions_[cell[1]], positions_[cell[2]]));
-        else if (cell.size() == 4)
-            worst = std::min(worst, quadrilateralShape(positions_[cell[0]], positions_[cell[1]], positions_[cell[2]],
-                                                       positions_[cell[3]]));
+        if (polygon.size() == 3)
+            worst = std::min(worst, triangleMeanRatio(positions_[polygon[0]], positions_[polygon[1]], positions_[polygon[2]]));
+        else if (polygon.size() == 4)
+            worst = std::min(worst, quadrilateralShape(positions_[polygon[0]], positions_[polygon[1]],
+                                                       positions_[polygon[2]], positions_[polygon[3]]));
     }
     return inverted;
 }

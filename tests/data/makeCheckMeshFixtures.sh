@@ -18,7 +18,8 @@
 #   prism2D     gmsh triangles around a hole, extruded one layer, empty front/back (2D triangles)
 #   tet         gmsh tetrahedra in a box with a spherical hole (3D tetrahedra)
 #   polyDual    polyDualMesh of a coarse tet mesh (3D polyhedra)
-#   quad2DMoved quad2D plus a time folder 0.5 whose points invert two cells
+#   quad2DMoved quad2D plus a time folder 0.5 whose points invert two cells, and 0.75 whose
+#               points make one cell a chevron: positive volume, its centroid across an edge
 set -euo pipefail
 
 here=$(cd "$(dirname "$0")" && pwd)
@@ -255,6 +256,36 @@ with open(dst, 'w') as f:
     f.write(')\n')
 EOF
 runCheckMesh "$case" "-0.5" -time 0.5
+# 0.75: on each plane the interior point nearest (1.5, 1.0) moved 85 % of the way to the
+# opposite corner of its cell on the lower left: that cell becomes a chevron whose area stays
+# positive but whose centroid lies beyond its reflex corner (its face pyramids turn over).
+mkdir -p "$case/0.75/polyMesh"
+python3 - "$case/constant/polyMesh" "$case/0.75/polyMesh/points" <<'EOF'
+import re, sys
+mesh, dst = sys.argv[1], sys.argv[2]
+body = open(mesh + '/points').read().split('}', 1)[1]
+pts = [tuple(map(float, m.groups())) for m in
+       re.finditer(r'\(([-+0-9.eE]+) ([-+0-9.eE]+) ([-+0-9.eE]+)\)', body)]
+faces = [list(map(int, m.group(1).split())) for m in
+         re.finditer(r'4\(([0-9 ]+)\)', open(mesh + '/faces').read().split('}', 1)[1])]
+for z in (0.0, 0.1):
+    i = min((i for i, p in enumerate(pts) if abs(p[2] - z) < 1e-9),
+            key=lambda i: (pts[i][0] - 1.5) ** 2 + (pts[i][1] - 1.0) ** 2)
+    # The quads of this plane holding i; the corner opposite i lowest on the left.
+    quads = [f for f in faces if i in f and all(abs(pts[k][2] - z) < 1e-9 for k in f)]
+    q = min((f[(f.index(i) + 2) % 4] for f in quads), key=lambda k: pts[k][0] + pts[k][1])
+    x, y, zz = pts[i]
+    pts[i] = (x + 0.85 * (pts[q][0] - x), y + 0.85 * (pts[q][1] - y), zz)
+with open(dst, 'w') as f:
+    f.write('FoamFile\n{\n    version     2.0;\n    format      ascii;\n'
+            '    class       vectorField;\n    location    "0.75/polyMesh";\n'
+            '    object      points;\n}\n\n')
+    f.write('%d\n(\n' % len(pts))
+    for p in pts:
+        f.write('(%.17g %.17g %.17g)\n' % p)
+    f.write(')\n')
+EOF
+runCheckMesh "$case" "-0.75" -time 0.75
 installCase quad2DMoved
 rm -f "$out/quad2DMoved/checkMesh.log" "$out/quad2DMoved/checkMesh-all.log"
 

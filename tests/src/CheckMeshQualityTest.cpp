@@ -392,6 +392,27 @@ TEST(TwoDimensionalAgreement, FoldedCellsOfAMovedTwoDimensionalMeshAreInvertedPl
     EXPECT_TRUE(evaluator.evaluate(mesh.points).isValid());
 }
 
+TEST(TwoDimensionalAgreement, AChevronWhoseCentroidLeftItIsInvertedWhereCheckMeshFindsItsPyramidsTurned)
+{
+    // Time 0.75 of the fixture: one cell made a chevron (makeCheckMeshFixtures.sh). checkMesh
+    // finds no negative volume but 2 face pyramids incorrectly oriented (the side faces into and
+    // out of its reflex corner); rbm counts that cell as one inverted planar cell, where the
+    // area alone would pass it.
+    const fs::path caseDir = fixtureRoot / "quad2DMoved";
+    const rbm::PolyMesh mesh = rbm::io::readPolyMesh(caseDir / "constant" / "polyMesh");
+    const auto moved = rbm::io::readPolyMeshPoints(caseDir / "0.75" / "polyMesh");
+    rbm::QualityEvaluator evaluator(mesh);
+    const rbm::QualityReport report = evaluator.evaluate(moved);
+    const CheckMeshLog log(caseDir / "checkMesh-0.75.log");
+    EXPECT_FALSE(log.number(R"(Number of negative volume cells: (\d+))").has_value());
+    const double wrongPyramids = log.number(R"(Error in face pyramids: (\d+) faces)").value();
+    EXPECT_EQ(wrongPyramids, 2.0);
+    EXPECT_EQ(report.checkMesh.incorrectlyOrientedPyramidCount, 2);
+    EXPECT_GT(report.checkMesh.minCellVolume, 0.0);
+    EXPECT_EQ(report.thesis.invertedCellCount, 1);
+    EXPECT_FALSE(report.isValid());
+}
+
 } // namespace
 
 namespace {

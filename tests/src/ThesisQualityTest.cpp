@@ -2,6 +2,7 @@
 // quadrilaterals, minimum angles, their extremes.
 
 #include "CheckMeshQuality.hpp"
+#include "InvertedCell.hpp"
 #include "MeshGenerators.hpp"
 #include "MeshGeometry.hpp"
 #include "PlanarMesh.hpp"
@@ -138,6 +139,41 @@ TEST(ThesisQuality, PlanarInvertedCellIsCounted)
     EXPECT_EQ(q.invertedCellCount, 1);
     EXPECT_LT(q.quadrilateralShape.min, 0.0);
     EXPECT_GT(q.nonOrthogonality.max, 90.0);   // centres on the wrong sides of the edge
+}
+
+TEST(ThesisQuality, AConcaveQuadrilateralWhoseCentroidLeftItIsInvertedThoughItsAreaIsPositive)
+{
+    // The chevron (0,0) (2,1) (0,2) (1.5,1), counter-clockwise: area 2 - 1.5 = 0.5 (fans about
+    // (0,0): +2 and -1.5), centroid ((2·2/3 - 1.5·0.5) / 0.5, 1) = (7/6, 1), left of its reflex
+    // node (1.5, 1): the triangles over the edges into and out of it have twice the signed
+    // area (1.5, -1) × (7/6, -1) = -1/3 and (-1.5, -1) × (-1/3, 0) = -1/3 (OpenFOAM's checkMesh:
+    // "Error in face pyramids" on the extruded cell).
+    const std::vector<Vector3> chevron = {{0, 0, 0}, {2, 1, 0}, {0, 2, 0}, {1.5, 1, 0}};
+    const std::vector<Label> polygon = {0, 1, 2, 3};
+    double area = 0.0;
+    const Vector3 centroid = rbm::polygonCentroid(polygon, chevron, area);
+    EXPECT_NEAR(area, 0.5, 1e-15);
+    EXPECT_NEAR(centroid.x, 7.0 / 6.0, 1e-15);
+    EXPECT_NEAR(centroid.y, 1.0, 1e-15);
+    EXPECT_NEAR(rbm::smallestEdgeTriangle(polygon, chevron, centroid), -1.0 / 3.0, 1e-15);
+    EXPECT_TRUE(rbm::isInvertedPolygon(area, rbm::smallestEdgeTriangle(polygon, chevron, centroid)));
+
+    // The reflex node at (0.4, 1) instead: area 2 - 0.4 = 1.6, centroid ((4/3 - 0.4 · 0.4/3) / 1.6,
+    // 1) = (0.8, 1), inside; edge triangles 1.2, 1.2, 0.4, 0.4: concave but valid.
+    const std::vector<Vector3> shallow = {{0, 0, 0}, {2, 1, 0}, {0, 2, 0}, {0.4, 1, 0}};
+    const Vector3 inside = rbm::polygonCentroid(polygon, shallow, area);
+    EXPECT_NEAR(area, 1.6, 1e-15);
+    EXPECT_NEAR(inside.x, 0.8, 1e-15);
+    EXPECT_NEAR(rbm::smallestEdgeTriangle(polygon, shallow, inside), 0.4, 1e-15);
+    EXPECT_FALSE(rbm::isInvertedPolygon(area, rbm::smallestEdgeTriangle(polygon, shallow, inside)));
+
+    // The whole-mesh figures count it: the pair's second quad made a chevron the same way.
+    auto m = shearedPlanarPair(0.0);
+    std::vector<Vector3> moved = m.points;
+    moved[5] = {1.15, 0.15, 0.0};   // (1,0) (2,0) (2,1)→(1.15,0.15) (1,1): reflex at (1.15, 0.15)
+    rbm::ThesisQualityWorkspace workspace;
+    EXPECT_GT(rbm::polygonSignedArea(std::vector<Label>{1, 4, 5, 2}, moved), 0.0);
+    EXPECT_EQ(rbm::computeThesisQuality2D(m, moved, workspace).invertedCellCount, 1);
 }
 
 TEST(ThesisQuality, ThreeDimensionalMetricsOfTheShearedPair)

@@ -30,6 +30,38 @@ TEST(InvertedCellCounter, ACubeMeshIsValidWithQualityOneAndAPointPushedThroughIt
     EXPECT_LT(worst, 0.0);
 }
 
+TEST(InvertedCellCounter, APlanarCellWhoseCentroidLeftItCountsAsInvertedThoughItsAreaIsPositive)
+{
+    // 2 × 2 unit squares; the centre node (1, 1) moved to (0.15, 0.15). The square [0,1]² becomes
+    // the chevron (0,0) (1,0) (0.15,0.15) (0,1): area 0.15 (fans +0.075 +0.075), centroid
+    // (0.2167, 0.2167), beyond its reflex node, so the triangle over the edge (1,0)→(0.15,0.15)
+    // has twice the signed area (-0.85, 0.15) × (-0.7833, 0.2167) = -0.0667 < 0 (OpenFOAM's
+    // checkMesh: "Error in face pyramids"). The other three squares stay convex.
+    const PolyMesh extruded = makeExtruded2D(2, 2, {0, 0, 0}, {2, 2, 1}, PlanarCellKind::Quadrilaterals);
+    const PseudoTwoDMesh twoD = extractPseudoTwoD(extruded);
+    InvertedCellCounter counter(extruded, extruded.points, &twoD);
+    std::vector<Vector3> displacement(twoD.planar.points.size());
+    std::vector<Vector3> moved(twoD.planar.points);
+    Label centre = -1;
+    for (Label node = 0; node < twoD.planar.nodeCount(); ++node)
+        if (std::abs(moved[node].x - 1) < 1e-12 && std::abs(moved[node].y - 1) < 1e-12) centre = node;
+    ASSERT_GE(centre, 0);
+    displacement[centre] = {-0.85, -0.85, 0.0};
+    moved[centre] = moved[centre] + displacement[centre];
+    for (Label c = 0; c < twoD.planar.cellCount(); ++c) EXPECT_GT(twoD.planar.signedArea(c, moved), 0.0);
+    std::vector<Label> cells;
+    double worst = 1.0;
+    EXPECT_EQ(counter.count(displacement, &worst, &cells), 1);
+    ASSERT_EQ(cells.size(), 1u);
+    // The inverted one is the cell whose nodes include (0, 0).
+    bool hasOrigin = false;
+    for (Label node : twoD.planar.cell(cells[0])) hasOrigin |= std::abs(moved[node].x) + std::abs(moved[node].y) < 1e-12;
+    EXPECT_TRUE(hasOrigin);
+    // The thesis' F_shape of the chevron stays positive (its corner Jacobians are): the count,
+    // not the shape, is what tells the cell's face pyramids turned over.
+    EXPECT_GT(worst, 0.0);
+}
+
 TEST(InvertedCellCounter, APlanarMeshIsCheckedOnItsPlaneAndTheSameBitsGiveTheSameFigures)
 {
     const PolyMesh extruded = makeExtruded2D(2, 2, {0, 0, 0}, {2, 2, 1}, PlanarCellKind::Triangles);
