@@ -1,6 +1,7 @@
 #include "ReducedNewtonSolver.hpp"
 
 #include "LocalGlobalSolver.hpp"
+#include "NodeExchange.hpp"
 #include "OrderedSums.hpp"
 
 #include <algorithm>
@@ -52,6 +53,12 @@ ReducedNewtonSolver::ReducedNewtonSolver(const RbmProblem& problem, ReducedNewto
     PetscBool monitor = PETSC_FALSE;
     RBM_CHECK_PETSC(PetscOptionsHasName(nullptr, "rbm_reduced_", "-monitor", &monitor));
     monitor_ = monitor == PETSC_TRUE;
+    // A part's figures are the whole problem's (reduced over the ranks): rank 0 prints them.
+    if (const NodeExchange* exchange = problem.nodeExchange(); monitor_ && exchange) {
+        int rank = 0;
+        RBM_CHECK_PETSC(MPI_Comm_rank(exchange->communicator(), &rank));
+        monitor_ = rank == 0;
+    }
 }
 
 ReducedNewtonSolver::~ReducedNewtonSolver() = default;
