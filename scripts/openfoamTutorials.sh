@@ -27,6 +27,9 @@
 #   --coeffs TEXT   appends `rigidBodyMotionSolverCoeffs { TEXT }` instead, to measure rbm's
 #                   options on the cases (e.g. --coeffs "scaling similar;"); the table's
 #                   header says so, and the expectations still apply to the defaults only
+#   --openfoamDiffusivity TEXT  sets `diffusivity TEXT;` in OpenFOAM's own runs instead of the
+#                   tutorial's (e.g. "uniform": how much its result owes to its tuned
+#                   diffusivity); the table's header says so
 #
 # Exit status: 0 when every check the expectations file marks `pass` passed (a `knownMiss`
 # that passes is reported loudly: "NOW PASSES, update expectations"); 1 when one failed;
@@ -40,6 +43,7 @@ cases=movingCone,waveMakerFlap,waveMakerPiston,oscillatingBox,sphereDrop
 table=""
 emptyCoeffs=0
 coeffs=""
+openfoamDiffusivity=""
 keep=0
 while [[ $# -gt 0 ]]; do
   case $1 in
@@ -49,6 +53,7 @@ while [[ $# -gt 0 ]]; do
     --table) table=$2; shift 2 ;;
     --emptyCoeffs) emptyCoeffs=1; shift ;;
     --coeffs) coeffs=$2; shift 2 ;;
+    --openfoamDiffusivity) openfoamDiffusivity=$2; shift 2 ;;
     --keep) keep=1; shift ;;
     -h|--help) sed -n '2,/^set -uo/p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
     *) echo "openfoamTutorials.sh: unknown argument '$1' (--help)" >&2; exit 2 ;;
@@ -191,6 +196,9 @@ runCase() { # name
 
   if [[ $kind == run ]]; then
     copyCase "$dir/tutorial" "$dir/openfoam"
+    if [[ -n $openfoamDiffusivity ]]; then
+      sed -i -E "s/^([[:space:]]*diffusivity[[:space:]]+).*;/\1$openfoamDiffusivity;/" "$dir/openfoam/constant/dynamicMeshDict"
+    fi
     runMotion "$dir/openfoam" run "$dir/rbm/0/pointDisplacement"
     copyCase "$dir/tutorial" "$dir/static"
     setControl "$dir/static" "$dt" "$staticSteps" 100000000
@@ -214,4 +222,4 @@ cores=$(lscpu 2>/dev/null | sed -n "s/^CPU(s):[[:space:]]*//p" | head -n 1)
 pluginStamp="$(basename "$plugin") $(date -u -r "$plugin" '+%Y-%m-%d %H:%M:%S UTC'), sha256 $(sha256sum "$plugin" | cut -c1-12)"
 python3 "$root/tests/openfoamTutorials/analyse.py" report "$work" "$cases" "$expectations" "${table:--}" \
   "$commit" "$(date -u '+%Y-%m-%d %H:%M UTC')" "$cpu, $cores cores, load $(cut -d' ' -f1-3 /proc/loadavg)" \
-  "$commandLine" "$total" "$pluginStamp" "$emptyCoeffs" "$coeffs"
+  "$commandLine" "$total" "$pluginStamp" "$emptyCoeffs" "$coeffs" "$openfoamDiffusivity"

@@ -526,7 +526,7 @@ def fmt_dev(r, key):
 
 
 def report(argv):
-    work, cases, expectations_path, table_path, commit, date, machine, command, seconds, plugin, empty, coeffs = argv
+    work, cases, expectations_path, table_path, commit, date, machine, command, seconds, plugin, empty, coeffs, diffusivity = argv
     expectations = read_expectations(expectations_path)
     status = 0
     rows = []
@@ -600,7 +600,8 @@ def report(argv):
                 commit, date, machine, plugin,
                 (" (with `--emptyCoeffs`: the plugin did not accept the old solvers' entries)" if empty == "1"
                  else " (rbm with `rigidBodyMotionSolverCoeffs { %s }`, not its defaults)" % coeffs if coeffs
-                 else ""), seconds),
+                 else "") + (" (OpenFOAM's runs with `diffusivity %s;`, not the tutorials' own)" % diffusivity
+                              if diffusivity else ""), seconds),
             "",
             "```sh",
             command,
