@@ -41,7 +41,7 @@ profileHeading "Memory profile of \`mpirun -np $ranks $(basename "$program") -ca
 # The items of a rank's heap at its peak (scripts/massifPeakItems.awk): each leaf goes to the item of
 # the first frame, from the allocation outwards, that itemOf names.
 items='function itemOf(frame) {
-    if (frame ~ /PartLaplacian::assemble/) return "K ⊗ I₃ as a PETSc MPIAIJ matrix, 3×3 blocks (PartLaplacian::assemble)"
+    if (frame ~ /PartLaplacian::assemble/) return "the scalar K as a PETSc MPIAIJ matrix (PartLaplacian::assemble)"
     if (frame ~ /PCSetUp_GAMG|PCGAMG|MatCoarsen/) return "PETSc GAMG hierarchy of that matrix (PCSetUp_GAMG: coarsening graph, prolongators, Galerkin products)"
     if (frame ~ /KSPSetUp|KSPSolve|PCSetUp|PCApply|VecDuplicate|KSPCreateVecs/) return "other PETSc solver work (vectors, smoothers)"
     if (frame ~ /ReducedHessian3D|ReducedEnergy::ReducedEnergy|PlanarReducedKernels/) return "reduced Hessian and energy: per-node data (ReducedHessian3D)"

@@ -30,6 +30,13 @@ MeshPart::MeshPart(MPI_Comm communicator, const LocalCells& part) : communicator
     firstOwnedRow_ = ownership.firstOwnedRow;
     numberLocalNodes(part, ownership);
     addHaloCells(part, ownership);
+    cellCount_ = static_cast<Label>(cellOffsets_.size()) - 1;
+}
+
+void MeshPart::releaseCells()
+{
+    std::vector<Label>{0}.swap(cellOffsets_);
+    std::vector<Label>().swap(cellNodes_);
 }
 
 // Owned points first, then the rank's other points, each group in local point order; the

@@ -48,11 +48,15 @@ public:
     // The node of every point of the LocalCells this part was built from.
     const std::vector<Label>& pointNodes() const { return pointNodes_; }
 
-    Label cellCount() const { return static_cast<Label>(cellOffsets_.size()) - 1; }
+    Label cellCount() const { return cellCount_; }
     Label ownCellCount() const { return ownCellCount_; }
-    // Cell c has the nodes cellNodes()[cellOffsets()[c] .. cellOffsets()[c+1]).
+    // Cell c has the nodes cellNodes()[cellOffsets()[c] .. cellOffsets()[c+1]) (until releaseCells()).
     const std::vector<Label>& cellOffsets() const { return cellOffsets_; }
     const std::vector<Label>& cellNodes() const { return cellNodes_; }
+    // Lets go of the cells' node lists (cellOffsets and cellNodes empty, cellCount kept) once
+    // what needs them is built: the part's solver reads them only to build its neighbour graph,
+    // and they would otherwise be alive in its GAMG set-up (about 36 bytes a cell).
+    void releaseCells();
     std::span<const Label> nodesOf(Label cell) const
     {
         return {cellNodes_.data() + cellOffsets_[cell], static_cast<std::size_t>(cellOffsets_[cell + 1] - cellOffsets_[cell])};
@@ -73,6 +77,7 @@ private:
     std::vector<int> nodeOwnerRanks_;
     std::vector<Label> pointNodes_;
     Label ownCellCount_ = 0;
+    Label cellCount_ = 0;
     std::vector<Label> cellOffsets_{0};
     std::vector<Label> cellNodes_;
 };

@@ -57,14 +57,14 @@ double nonOrthogonalityDegrees(double cosine)
 } // namespace
 
 PartQuality::PartQuality(const PolyMesh& processorMesh, MPI_Comm communicator)
-    : mesh_(processorMesh), communicator_(communicator), evaluator_(processorMesh)
+    : mesh_(processorMesh), communicator_(communicator), evaluator_(std::in_place, processorMesh)
 {
     int ranks = 1;
     RBM_CHECK_PETSC(MPI_Comm_rank(communicator, &rank_));
     RBM_CHECK_PETSC(MPI_Comm_size(communicator, &ranks));
 
     std::string problem;
-    if (evaluator_.isTwoD()) problem = "the processor mesh is pseudo-2D (3D parts only)";
+    if (evaluator_->isTwoD()) problem = "the processor mesh is pseudo-2D (3D parts only)";
     std::map<int, int> patchesTo;   // per neighbour rank: its patches so far
     Label processorFaces = 0;
     for (const Patch& patch : processorMesh.patches) {
@@ -107,9 +107,10 @@ StepQuality PartQuality::evaluateStep(std::span<const Vector3> points)
 {
     // The cell figures and the internal faces' non-orthogonality as a serial mesh's; the
     // skewness without the processor faces' mirror-cell figure.
-    StepQuality quality = evaluator_.evaluateStep(points);
+    if (!evaluator_) evaluator_.emplace(mesh_);
+    StepQuality quality = evaluator_->evaluateStep(points);
     quality.maxSkewness = ownFacesMaxSkewness();
-    const MeshGeometry& geometry = evaluator_.geometry();
+    const MeshGeometry& geometry = evaluator_->geometry();
     exchangeCellCentres(geometry);
     addProcessorFaces(points, geometry, quality);
 
@@ -129,7 +130,7 @@ StepQuality PartQuality::evaluateStep(std::span<const Vector3> points)
 
 double PartQuality::ownFacesMaxSkewness() const
 {
-    const std::vector<double>& faceSkew = evaluator_.stepFaceMeasures().faceSkew;
+    const std::vector<double>& faceSkew = evaluator_->stepFaceMeasures().faceSkew;
     double largest = 0.0;   // computeCheckMeshExtremes' start: skewness is at least 0
     const auto largestOf = [&](Label begin, Label end) {
         for (Label f = begin; f < end; ++f) largest = std::max(largest, faceSkew[f]);
@@ -183,6 +184,6 @@ void PartQuality::addProcessorFaces(std::span<const Vector3> points, const MeshG
         quality.maxNonOrthogonality = std::max(quality.maxNonOrthogonality, nonOrthogonalityDegrees(smallestCosine));
 }
 
-void PartQuality::releaseWorkspaces() { evaluator_.releaseWorkspaces(); }
+void PartQuality::releaseWorkspaces() { evaluator_.reset(); }
 
 } // namespace rbm::motion

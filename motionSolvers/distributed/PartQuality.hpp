@@ -26,6 +26,8 @@
 
 #include <mpi.h>
 
+#include <optional>
+
 #include <span>
 #include <vector>
 
@@ -44,7 +46,9 @@ public:
     // processor mesh), the same on every rank. Collective.
     StepQuality evaluateStep(std::span<const Vector3> points);
 
-    // Between time steps: the evaluator's work arrays given back (QualityEvaluator::releaseWorkspaces).
+    // Between time steps: the evaluator given back, its work arrays and its topology (the
+    // next evaluateStep builds it again, O(cells)): the first solve's GAMG set-up is a rank's
+    // memory peak, and the topology, about 90 bytes a point, need not be alive in it.
     void releaseWorkspaces();
 
 private:
@@ -67,7 +71,7 @@ private:
     const PolyMesh& mesh_;
     MPI_Comm communicator_;
     int rank_ = 0;
-    QualityEvaluator evaluator_;
+    std::optional<QualityEvaluator> evaluator_;  // empty after releaseWorkspaces()
     std::vector<ProcessorPatch> processorPatches_;
     // Per processor face, patch by patch: towards a lower rank the centre of this rank's cell
     // (sent), towards a higher rank that of the neighbour's cell (received).

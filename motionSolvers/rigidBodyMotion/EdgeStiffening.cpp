@@ -80,9 +80,30 @@ EdgeStiffening::EdgeStiffening(const RigidBodyMotionOptions& options, const Poly
     inEffect_ = whenRigid_;
 }
 
+void EdgeStiffening::releaseFactors()
+{
+    if (split_ || released_) return;
+    appliedWhenReleased_ = inEffect_ != nullptr;
+    inEffect_.reset();
+    whenRigid_.reset();
+    released_ = true;
+}
+
 bool EdgeStiffening::followMotion(bool allPatchesRigid, const std::vector<bool>& moved)
 {
     if (!automatic_) return false;
+    if (released_) {
+        // The rule below on the state the factors had when released; applying them again
+        // computes them again.
+        if (allPatchesRigid == appliedWhenReleased_) return false;
+        appliedWhenReleased_ = allPatchesRigid;
+        released_ = false;
+        if (allPatchesRigid) {
+            whenRigid_ = std::make_shared<const std::vector<double>>(factorsTowards_(patches_, exponent_));
+            inEffect_ = whenRigid_;
+        }
+        return true;
+    }
     if (!allPatchesRigid) {
         if (!inEffect_) return false;
         inEffect_ = nullptr;
@@ -112,6 +133,8 @@ bool EdgeStiffening::followMotion(bool allPatchesRigid, const std::vector<bool>&
         }
     }
     if (inEffect_) return false;
+    if (!whenRigid_)  // released while not applied, then taken off the release by a deforming step
+        whenRigid_ = std::make_shared<const std::vector<double>>(factorsTowards_(patches_, exponent_));
     inEffect_ = whenRigid_;
     return true;
 }

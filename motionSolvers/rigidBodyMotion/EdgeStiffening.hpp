@@ -72,6 +72,12 @@ public:
     // movingAndFixed splits the patches by. Returns whether the factors in effect changed (the
     // problem must be rebuilt).
     bool followMotion(bool allPatchesRigid, const std::vector<bool>& moved);
+    // Lets go of the factors once the problem in use has its weights from them (a decomposed
+    // run's part, PartRigidBodyMotion: 8 bytes per directed edge alive through the solver's
+    // set-up otherwise). factors() is then null until followMotion() applies them again, which
+    // computes them again (the distances: a second cost only when a deforming spell ends).
+    // No-op with movingAndFixed's split (its factors depend on the motion seen so far).
+    void releaseFactors();
     // What `stiffening auto` chose, in words, to follow options.describe()'s "stiffening auto":
     // " = power 0.8 inverseDistance (patches) while every prescribed patch moves rigidly" (or
     // the split's words); empty for other stiffening entries or without patches.
@@ -80,6 +86,8 @@ public:
 private:
     std::shared_ptr<const std::vector<double>> inEffect_;
     std::shared_ptr<const std::vector<double>> whenRigid_;   // auto: the factors when applied
+    bool released_ = false;         // releaseFactors(): inEffect_ and whenRigid_ let go of
+    bool appliedWhenReleased_ = false;  // whether the factors were in effect then (and since)
     std::vector<Label> patches_;
     std::vector<Label> moving_;
     bool automatic_ = false;

@@ -89,6 +89,8 @@ void RbmProblem::updateGhostNodes(std::span<Vector3> nodeValues) const
 
 RbmProblem RbmProblem::withReferencePoints(std::vector<Vector3> referencePoints) const
 {
+    if (edgeWeightFactorsReleased_)
+        throw std::logic_error("RbmProblem::withReferencePoints: the edge weight factors were released");
     RbmProblem moved = isPart() ? RbmProblem(dimension_, std::move(referencePoints), graph_, constraints_, weighting_, part_)
                                 : RbmProblem(dimension_, std::move(referencePoints), graph_, constraints_, weighting_);
     moved.coupledPairs_ = coupledPairs_;  // checked already
@@ -103,6 +105,13 @@ void RbmProblem::setEdgeWeightFactors(std::span<const double> factors)
 {
     setEdgeWeightFactors(factors.empty() ? nullptr
                                          : std::make_shared<const std::vector<double>>(factors.begin(), factors.end()));
+}
+
+void RbmProblem::releaseEdgeWeightFactors()
+{
+    if (!edgeWeightFactors_) return;
+    edgeWeightFactors_.reset();
+    edgeWeightFactorsReleased_ = true;
 }
 
 const std::vector<double>& RbmProblem::edgeWeightFactors() const

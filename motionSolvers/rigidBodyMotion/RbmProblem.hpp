@@ -179,6 +179,12 @@ public:
     // problem it rebuilds and every sub-step's problem hold the same factors.
     void setEdgeWeightFactors(std::shared_ptr<const std::vector<double>> factors);
     const std::vector<double>& edgeWeightFactors() const;
+    // Lets go of the factors once the weights hold them (edgeWeightFactors() is then empty;
+    // withReferencePoints() throws std::logic_error). A decomposed run's part solves every step
+    // without sub-steps, so nothing reads them again: with the stiffening's own copy released
+    // too (EdgeStiffening::releaseFactors) that is 8 bytes per directed edge, about 200 bytes a
+    // node of a hexahedral part, no longer alive in GAMG's set-up, the part's memory peak.
+    void releaseEdgeWeightFactors();
     // Ties pairs of unknown nodes, u_b = q u_a (replacing any pairs set before; empty: none);
     // kept by withReferencePoints(). Create solvers after this call. Throws
     // std::invalid_argument for a node that is prescribed, in two pairs or paired with itself,
@@ -287,6 +293,7 @@ private:
 
     std::vector<double> edgeWeights_;
     std::shared_ptr<const std::vector<double>> edgeWeightFactors_;  // null: none
+    bool edgeWeightFactorsReleased_ = false;  // releaseEdgeWeightFactors: in the weights only
     // Per node; empty without sliding nodes (two arrays of 25 MB at 10⁶ points for zeros).
     std::vector<Vector3> unitNormals_;
     std::vector<Vector3> secondUnitNormals_;

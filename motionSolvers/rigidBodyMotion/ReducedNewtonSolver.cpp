@@ -37,8 +37,9 @@ double defaultAbsoluteTolerance(const RbmProblem& problem)
 } // namespace
 
 ReducedNewtonSolver::ReducedNewtonSolver(const RbmProblem& problem, ReducedNewtonOptions options)
-    : problem_(problem), options_(options), reducedEnergy_(problem, options.scaling),
+    : problem_(problem), options_(options),
       preconditioner_(problem, options.linearSolver, options.laplacianRelativeTolerance),
+      reducedEnergy_(problem, options.scaling),
       relativeDisplacement_(problem, options.displacementTolerance > 0.0),
       warmStart_(problem, reducedEnergy_, preconditioner_, relativeDisplacement_,
                  {options.turnedStart, options.correctionMemory, options.harmonicBasis, options.displacementTolerance}),

@@ -110,8 +110,12 @@ private:
 
     const RbmProblem& problem_;
     ReducedNewtonOptions options_;  // maximumIterations with -rbm_reduced_max_it read
-    ReducedEnergy reducedEnergy_;
+    // K⁻¹ before the reduced energy: its set-up (a part's GAMG coarsening, the serial multigrid's
+    // aggregation) is transient memory that the energy's per-node data then reuses instead of
+    // adding to (the decomposed run's per-rank peak came in GAMG's set-up, with ReducedHessian3D
+    // already allocated: docs/parallel.md, the measured table).
     LaplacianPreconditioner preconditioner_;
+    ReducedEnergy reducedEnergy_;
     RelativeDisplacement relativeDisplacement_;
     WarmStart warmStart_;
     NewtonCg newtonCg_;

@@ -38,12 +38,20 @@ PartLaplacian::PartLaplacian(const RbmProblem& problem, std::span<const double> 
     if (cycleName != "local" && cycleName != "gamg")
         throw std::invalid_argument("-rbm_reduced_part_cycle " + cycleName + ": expected local or gamg");
     useLocalCycle_ = cycleName == "local";
+    relativeTolerance_ = relativeTolerance;
+    innerSolve_ = solveToTolerance;
     // The matrix over the ranks only where something multiplies by it or cycles on it.
     if (!useLocalCycle_ || solveToTolerance) assemble(laplacian);
     else slidingScales(laplacian);
     if (useLocalCycle_) setUpLocalCycle(laplacian);
-    else setUpCycle();
-    setUpSolver(relativeTolerance, solveToTolerance);
+}
+
+void PartLaplacian::setUp()
+{
+    if (setUp_) return;
+    if (!useLocalCycle_) setUpCycle();
+    setUpSolver();
+    setUp_ = true;
 }
 
 PartLaplacian::~PartLaplacian() = default;
@@ -147,7 +155,7 @@ void PartLaplacian::setUpCycle()
     RBM_CHECK_PETSC(KSPSetUp(cycle_));
 }
 
-void PartLaplacian::setUpSolver(double relativeTolerance, bool solveToTolerance)
+void PartLaplacian::setUpSolver()
 {
     const MPI_Comm communicator = problem_.nodeExchange()->communicator();
     const PetscInt ownedRows = 3 * static_cast<PetscInt>(ownedUnknowns_);
@@ -157,11 +165,10 @@ void PartLaplacian::setUpSolver(double relativeTolerance, bool solveToTolerance)
     RBM_CHECK_PETSC(MatCreateShell(communicator, ownedRows, ownedRows, PETSC_DETERMINE, PETSC_DETERMINE, this,
                                    operator_.out()));
     RBM_CHECK_PETSC(MatShellSetOperation(operator_, MATOP_MULT, reinterpret_cast<void (*)(void)>(&shellMultiply)));
-    innerSolve_ = solveToTolerance;
     RBM_CHECK_PETSC(KSPCreate(communicator, solver_.out()));
     RBM_CHECK_PETSC(KSPSetOperators(solver_, operator_, operator_));
     RBM_CHECK_PETSC(KSPSetType(solver_, innerSolve_ ? KSPCG : KSPPREONLY));
-    RBM_CHECK_PETSC(KSPSetTolerances(solver_, relativeTolerance, 0.0, PETSC_DEFAULT, 1000));
+    RBM_CHECK_PETSC(KSPSetTolerances(solver_, relativeTolerance_, 0.0, PETSC_DEFAULT, 1000));
     options_ = std::make_unique<InheritedOptions>("reduced");
     configureFromOptions(solver_, *options_);
     // The preconditioner is this class's own, whatever -rbm_reduced_pc_type says (the serial
@@ -274,6 +281,7 @@ PetscErrorCode PartLaplacian::shellPrecondition(PC preconditioner, Vec r, Vec z)
 
 bool PartLaplacian::apply(std::span<const double> r, std::span<double> z)
 {
+    if (!setUp_) throw std::logic_error("PartLaplacian::apply before setUp");
     const std::size_t ownedEntries = 3 * static_cast<std::size_t>(ownedUnknowns_);
     if (r.size() != 3 * static_cast<std::size_t>(problem_.unknownNodeCount()) || z.size() != r.size())
         throw std::invalid_argument("PartLaplacian::apply: 3 entries per unknown node expected");

@@ -45,9 +45,15 @@ namespace rbm::motion {
 class PartLaplacian {
 public:
     // laplacian: K's scalar entries in the part problem's blockPattern() order
-    // (coupledDisplacementLaplacian). Throws std::invalid_argument unless the problem is a 3D part.
+    // (coupledDisplacementLaplacian), copied (into PETSc's matrix or the local cycle's CSR): the
+    // caller may release its array before setUp. Throws std::invalid_argument unless the problem
+    // is a 3D part. Collective.
     PartLaplacian(const RbmProblem& problem, std::span<const double> laplacian, double relativeTolerance,
                   bool solveToTolerance);
+    // Builds the cycle (GAMG's set-up) and the solver; collective, before the first apply. A
+    // separate step so that the caller's copy of K is gone first: GAMG's coarsening is the
+    // transient peak of a rank's memory, and K's array (27 doubles a node) need not be alive in it.
+    void setUp();
     ~PartLaplacian();
     PartLaplacian(const PartLaplacian&) = delete;
     PartLaplacian& operator=(const PartLaplacian&) = delete;
@@ -67,7 +73,7 @@ private:
     // rbm's smoothed aggregation of the rank's own block of K (-rbm_reduced_part_cycle local).
     void setUpLocalCycle(std::span<const double> laplacian);
     void setUpCycle();
-    void setUpSolver(double relativeTolerance, bool solveToTolerance);
+    void setUpSolver();  // the CG on A (or preonly), with innerSolve_ and relativeTolerance_
     // P on 3 entries per owned unknown node.
     void project(double* values) const;
     // A in (cycle false: the shell's product) or M in (cycle true: the preconditioner).
@@ -81,6 +87,8 @@ private:
     int ownedUnknowns_ = 0;
     std::vector<double> slidingScale_;  // per owned unknown: K_aa (s), used at sliding nodes
     bool innerSolve_ = true;
+    double relativeTolerance_ = 0.0;
+    bool setUp_ = false;
     PetscMat stiffness_;   // scalar K, owned unknown rows
     PetscMat operator_;    // A, a shell on 3 rows per owned unknown
     PetscKsp cycle_;       // one multigrid cycle of K (preonly + GAMG), the default

@@ -202,6 +202,14 @@ void checkPartAgainstWholeMesh(const std::string& name, const PolyMesh& whole, s
     MPI_Allreduce(mine, smallest, 3, MPI_DOUBLE, MPI_MIN, PETSC_COMM_WORLD);
     MPI_Allreduce(mine, largest, 3, MPI_DOUBLE, MPI_MAX, PETSC_COMM_WORLD);
     for (int k = 0; k < 3; ++k) EXPECT_EQ(smallest[k], largest[k]) << "figure " << k;
+    // Between steps the evaluator goes (its topology too) and the next evaluation builds it
+    // again: the same figures, to the bit.
+    partQuality.releaseWorkspaces();
+    const StepQuality again = partQuality.evaluateStep(points);
+    EXPECT_EQ(again.worstCellQuality, reduced.worstCellQuality);
+    EXPECT_EQ(again.maxNonOrthogonality, reduced.maxNonOrthogonality);
+    EXPECT_EQ(again.maxSkewness, reduced.maxSkewness);
+    EXPECT_EQ(again.invertedCellCount, reduced.invertedCellCount);
 
     const StepQuality alone = largestOfTheRanksAlone(part.mesh, points);
     if (worldRank() == 0)

@@ -74,6 +74,34 @@ TEST(EdgeStiffening, AutomaticFollowsWhetherThePrescribedPatchesMoveRigidly)
     EXPECT_EQ(automatic.factors(), factors);
 }
 
+TEST(EdgeStiffening, ReleasedFactorsComeBackTheSameWhenAppliedAgain)
+{
+    // auto in 3D (no split): the factors are computed at construction and in effect.
+    const PolyMesh mesh = makeHexBox(4, 1, 1, {0, 0, 0}, {4, 1, 1});
+    const CellNeighbourGraph graph = buildCellNeighbourGraph(mesh);
+    EdgeStiffening automatic(optionsOf("stiffening auto;"), mesh, mesh.points, nullptr, graph, mesh.points, 3);
+    ASSERT_TRUE(automatic.automatic());
+    ASSERT_TRUE(automatic.factors());
+    const std::vector<double> original = *automatic.factors();
+    const std::vector<bool> moved(mesh.patches.size(), true);
+    automatic.releaseFactors();
+    EXPECT_FALSE(automatic.factors());
+    EXPECT_FALSE(automatic.followMotion(true, moved));   // still applied: nothing to rebuild
+    EXPECT_FALSE(automatic.factors());
+    EXPECT_TRUE(automatic.followMotion(false, moved));   // a deforming patch: off
+    EXPECT_FALSE(automatic.factors());
+    EXPECT_TRUE(automatic.followMotion(true, moved));    // rigid again: computed again, bit for bit
+    ASSERT_TRUE(automatic.factors());
+    EXPECT_EQ(*automatic.factors(), original);
+    // Released while off, then applied.
+    EXPECT_TRUE(automatic.followMotion(false, moved));
+    automatic.releaseFactors();
+    EXPECT_FALSE(automatic.followMotion(false, moved));
+    EXPECT_TRUE(automatic.followMotion(true, moved));
+    ASSERT_TRUE(automatic.factors());
+    EXPECT_EQ(*automatic.factors(), original);
+}
+
 TEST(EdgeStiffening, MovingAndFixedIsTheProductOfTheFactorsTowardsTheMovingAndTheOtherPatches)
 {
     // A 6³ box of unit cubes (h_min = 1); xMin moves, every other side is fixed.

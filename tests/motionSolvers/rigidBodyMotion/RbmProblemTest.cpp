@@ -588,6 +588,16 @@ TEST(RbmProblemInput, SharedEdgeWeightFactorsAreOneArrayForEveryProblemBuiltFrom
     EXPECT_THROW(sharing.setEdgeWeightFactors(std::shared_ptr<const std::vector<double>>(negative)), std::invalid_argument);
     sharing.setEdgeWeightFactors(std::shared_ptr<const std::vector<double>>());
     EXPECT_TRUE(sharing.edgeWeightFactors().empty());
+    // Released (a decomposed run's part): the weights keep the factors, the problem no longer
+    // holds the array, and a moved copy, which would need them, is refused.
+    const std::vector<double> stiffened = copying.edgeWeights();
+    RbmProblem releasing = copying;
+    releasing.setEdgeWeightFactors(shared);
+    releasing.releaseEdgeWeightFactors();
+    EXPECT_TRUE(releasing.edgeWeightFactors().empty());
+    EXPECT_EQ(shared.use_count(), 2);  // this test and moved; releasing let go of it
+    EXPECT_EQ(releasing.edgeWeights(), stiffened);
+    EXPECT_THROW(releasing.withReferencePoints(stretched), std::logic_error);
     const RbmProblem plain(2, mesh.points, mesh.graph, prescribeBoundary(mesh), EdgeWeighting::inverseDistanceSquared);
     EXPECT_EQ(sharing.edgeWeights(), plain.edgeWeights());
 }

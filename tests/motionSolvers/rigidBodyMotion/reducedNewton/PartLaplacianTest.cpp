@@ -56,6 +56,7 @@ void checkPartAgainstWhole(const rbm::test::BoxDecomposition& decomposition)
     for (Label g : part.nodeGlobalIds()) constraints.push_back(wholeConstraints[g]);
     const RbmProblem problem = partProblem(3, part, constraints);
     PartLaplacian laplacian(problem, coupledDisplacementLaplacian(problem), 1e-10, true);
+    laplacian.setUp();  // the array above is a temporary: the matrix holds its copy
     const std::vector<double> right = rightHandSide(problem);
     std::vector<double> solution(right.size(), 1.0);
     ASSERT_TRUE(laplacian.apply(right, solution));
