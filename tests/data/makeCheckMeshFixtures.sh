@@ -18,7 +18,7 @@
 #   prism2D     gmsh triangles around a hole, extruded one layer, empty front/back (2D triangles)
 #   tet         gmsh tetrahedra in a box with a spherical hole (3D tetrahedra)
 #   polyDual    polyDualMesh of a coarse tet mesh (3D polyhedra)
-#   quad2DMoved quad2D plus a time folder 0.5 whose points invert two cells, and 0.75 whose
+#   quad2DMoved quad2D plus a time folder 0.5 whose points invert two cells, and 0.25 whose
 #               points make one cell a chevron: positive volume, its centroid across an edge
 set -euo pipefail
 
@@ -256,11 +256,11 @@ with open(dst, 'w') as f:
     f.write(')\n')
 EOF
 runCheckMesh "$case" "-0.5" -time 0.5
-# 0.75: on each plane the interior point nearest (1.5, 1.0) moved 85 % of the way to the
+# 0.25: on each plane the interior point nearest (1.5, 1.0) moved 85 % of the way to the
 # opposite corner of its cell on the lower left: that cell becomes a chevron whose area stays
 # positive but whose centroid lies beyond its reflex corner (its face pyramids turn over).
-mkdir -p "$case/0.75/polyMesh"
-python3 - "$case/constant/polyMesh" "$case/0.75/polyMesh/points" <<'EOF'
+mkdir -p "$case/0.25/polyMesh"
+python3 - "$case/constant/polyMesh" "$case/0.25/polyMesh/points" <<'EOF'
 import re, sys
 mesh, dst = sys.argv[1], sys.argv[2]
 body = open(mesh + '/points').read().split('}', 1)[1]
@@ -278,14 +278,14 @@ for z in (0.0, 0.1):
     pts[i] = (x + 0.85 * (pts[q][0] - x), y + 0.85 * (pts[q][1] - y), zz)
 with open(dst, 'w') as f:
     f.write('FoamFile\n{\n    version     2.0;\n    format      ascii;\n'
-            '    class       vectorField;\n    location    "0.75/polyMesh";\n'
+            '    class       vectorField;\n    location    "0.25/polyMesh";\n'
             '    object      points;\n}\n\n')
     f.write('%d\n(\n' % len(pts))
     for p in pts:
         f.write('(%.17g %.17g %.17g)\n' % p)
     f.write(')\n')
 EOF
-runCheckMesh "$case" "-0.75" -time 0.75
+runCheckMesh "$case" "-0.25" -time 0.25
 installCase quad2DMoved
 rm -f "$out/quad2DMoved/checkMesh.log" "$out/quad2DMoved/checkMesh-all.log"
 

@@ -394,16 +394,16 @@ TEST(TwoDimensionalAgreement, FoldedCellsOfAMovedTwoDimensionalMeshAreInvertedPl
 
 TEST(TwoDimensionalAgreement, AChevronWhoseCentroidLeftItIsInvertedWhereCheckMeshFindsItsPyramidsTurned)
 {
-    // Time 0.75 of the fixture: one cell made a chevron (makeCheckMeshFixtures.sh). checkMesh
+    // Time 0.25 of the fixture: one cell made a chevron (makeCheckMeshFixtures.sh). checkMesh
     // finds no negative volume but 2 face pyramids incorrectly oriented (the side faces into and
     // out of its reflex corner); rbm counts that cell as one inverted planar cell, where the
     // area alone would pass it.
     const fs::path caseDir = fixtureRoot / "quad2DMoved";
     const rbm::PolyMesh mesh = rbm::io::readPolyMesh(caseDir / "constant" / "polyMesh");
-    const auto moved = rbm::io::readPolyMeshPoints(caseDir / "0.75" / "polyMesh");
+    const auto moved = rbm::io::readPolyMeshPoints(caseDir / "0.25" / "polyMesh");
     rbm::QualityEvaluator evaluator(mesh);
     const rbm::QualityReport report = evaluator.evaluate(moved);
-    const CheckMeshLog log(caseDir / "checkMesh-0.75.log");
+    const CheckMeshLog log(caseDir / "checkMesh-0.25.log");
     EXPECT_FALSE(log.number(R"(Number of negative volume cells: (\d+))").has_value());
     const double wrongPyramids = log.number(R"(Error in face pyramids: (\d+) faces)").value();
     EXPECT_EQ(wrongPyramids, 2.0);
