@@ -17,15 +17,30 @@ std::vector<int> aggregateRows(std::span<const int> rowOffsets, std::span<const 
     const int rows = static_cast<int>(rowOffsets.size()) - 1;
     std::vector<int> aggregate(static_cast<std::size_t>(rows), -1);
     count = 0;
+    // Strong couplings only (|a_ij| ≥ θ √(a_ii a_jj)) form aggregates (phases 1 and 3; phase 2
+    // joins the strongest neighbour as before). See the header for θ.
+    std::vector<double> diagonal(static_cast<std::size_t>(rows), 0.0);
+    for (int row = 0; row < rows; ++row)
+        for (int k = rowOffsets[row]; k < rowOffsets[row + 1]; ++k)
+            if (columns[k] == row) diagonal[row] = std::abs(values[k]);
+    for (int row = 0; row < rows; ++row)  // a pattern without its diagonal: the row's sum
+        if (diagonal[row] == 0.0)
+            for (int k = rowOffsets[row]; k < rowOffsets[row + 1]; ++k) diagonal[row] += std::abs(values[k]);
+    auto strong = [&](int row, int k) {
+        const int column = columns[k];
+        return column != row &&
+               std::abs(values[k]) >= strongCouplingThreshold * std::sqrt(diagonal[row] * diagonal[column]);
+    };
     // Phase 1: a row with no aggregated neighbour starts an aggregate of its neighbourhood.
     for (int row = 0; row < rows; ++row) {
         if (aggregate[row] >= 0) continue;
         bool free = true;
         for (int k = rowOffsets[row]; k < rowOffsets[row + 1] && free; ++k)
-            free = columns[k] == row || aggregate[columns[k]] < 0;
+            free = !strong(row, k) || aggregate[columns[k]] < 0;
         if (!free) continue;
         aggregate[row] = count;
-        for (int k = rowOffsets[row]; k < rowOffsets[row + 1]; ++k) aggregate[columns[k]] = count;
+        for (int k = rowOffsets[row]; k < rowOffsets[row + 1]; ++k)
+            if (strong(row, k)) aggregate[columns[k]] = count;
         ++count;
     }
     // Phase 2: the rows left join their strongest neighbour's aggregate of phase 1.
@@ -49,7 +64,7 @@ std::vector<int> aggregateRows(std::span<const int> rowOffsets, std::span<const 
         if (aggregate[row] >= 0) continue;
         aggregate[row] = count;
         for (int k = rowOffsets[row]; k < rowOffsets[row + 1]; ++k)
-            if (aggregate[columns[k]] < 0) aggregate[columns[k]] = count;
+            if (strong(row, k) && aggregate[columns[k]] < 0) aggregate[columns[k]] = count;
         ++count;
     }
     return aggregate;

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <tuple>
 #include <vector>
 
 using namespace rbm::test::multigridCases;
@@ -19,6 +20,47 @@ using namespace rbm::test::multigridCases;
 namespace rbm::motion {
 
 namespace {
+
+TEST(SmoothedAggregation, OnStretchedCellsAggregatesFollowTheStrongCouplingsOnly)
+{
+    // A 12 × 12 grid of cells of aspect ratio 100 (a boundary layer's): 1/|d|² weights give the
+    // couplings along x 1e-4 of those along y; every row also holds 0.1 on its diagonal (a held
+    // neighbour's share). |a_ij| / √(a_ii a_jj) is about 0.45 along y and 5e-5 along x, far
+    // below the threshold 0.005: aggregates lie in single x columns (lines across the layers),
+    // where aggregating whole neighbourhoods would mix both directions.
+    constexpr int n = 12;
+    auto index = [](int i, int j) { return j * n + i; };
+    std::vector<int> offsets{0}, columns;
+    std::vector<double> values;
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            double diagonal = 0.1;
+            const int diagonalPosition = static_cast<int>(columns.size());
+            columns.push_back(index(i, j));
+            values.push_back(0.0);
+            for (const auto& [di, dj, weight] : {std::tuple{-1, 0, 1e-4}, std::tuple{1, 0, 1e-4}, std::tuple{0, -1, 1.0},
+                                                 std::tuple{0, 1, 1.0}}) {
+                if (i + di < 0 || i + di >= n || j + dj < 0 || j + dj >= n) continue;
+                columns.push_back(index(i + di, j + dj));
+                values.push_back(-weight);
+                diagonal += weight;
+            }
+            values[diagonalPosition] = diagonal;
+            offsets.push_back(static_cast<int>(columns.size()));
+        }
+    int count = 0;
+    const std::vector<int> aggregate = aggregateRows(offsets, columns, values, count);
+    std::vector<int> columnOf(static_cast<std::size_t>(count), -1);
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            int& column = columnOf[aggregate[index(i, j)]];
+            if (column < 0) column = i;
+            EXPECT_EQ(column, i) << "an aggregate spans x columns " << column << " and " << i;
+        }
+    // In row order each column gets {0, 1}, {2, 3, 4}, {5, 6, 7}, {8, 9, 10} in phase 1 (a row and
+    // its strong neighbours) and row 11 joins {8, 9, 10} in phase 2: 4 aggregates a column.
+    EXPECT_EQ(count, 4 * n);
+}
 
 TEST(SmoothedAggregation, AggregatesAreConnectedNeighbourhoodsCoveringEveryRow)
 {
