@@ -30,7 +30,7 @@ function(fail message)
   message(SEND_ERROR "${message}")
 endfunction()
 include(${CMAKE_CURRENT_LIST_DIR}/PluginLogChecks.cmake)
-include(${CMAKE_CURRENT_LIST_DIR}/RbmPlugin.cmake)
+include(${CMAKE_CURRENT_LIST_DIR}/TutorialRequirements.cmake)
 
 # --- What is needed, or a visible skip ----------------------------------------------------------
 find_program(PIMPLE_FOAM pimpleFoam)

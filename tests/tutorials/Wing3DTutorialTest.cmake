@@ -22,7 +22,7 @@
 cmake_minimum_required(VERSION 3.20)
 include(${CMAKE_CURRENT_LIST_DIR}/../CopyCaseInputs.cmake)
 include(${CMAKE_CURRENT_LIST_DIR}/PluginLogChecks.cmake)
-include(${CMAKE_CURRENT_LIST_DIR}/RbmPlugin.cmake)
+include(${CMAKE_CURRENT_LIST_DIR}/TutorialRequirements.cmake)
 
 foreach(required RBM_SOURCE_DIR RBM_BUILD_DIR RBM_WORK_DIR RBM_COMPARE_POINTS DECOMPOSED_BOUND)
   if(NOT DEFINED ${required})
@@ -41,13 +41,7 @@ function(fail message)
 endfunction()
 
 # --- What is needed, or a visible skip ----------------------------------------------------------
-foreach(program blockMesh moveDynamicMesh decomposePar checkMesh)
-  find_program(found_${program} ${program})
-  if(NOT found_${program})
-    message("SKIPPED: OpenFOAM's ${program} not found (apt-get install openfoam, done by scripts/setup.sh)")
-    return()
-  endif()
-endforeach()
+rbm_require_openfoam(blockMesh moveDynamicMesh decomposePar checkMesh)
 find_program(PYTHON3 python3)
 if(NOT PYTHON3)
   message("SKIPPED: python3 not found (the tutorial's mesh script needs it)")
