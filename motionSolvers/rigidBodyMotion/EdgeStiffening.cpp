@@ -89,6 +89,22 @@ void EdgeStiffening::releaseFactors()
     released_ = true;
 }
 
+void EdgeStiffening::restoreFactors()
+{
+    if (!released_) return;
+    released_ = false;
+    if (!appliedWhenReleased_) return;
+    whenRigid_ = std::make_shared<const std::vector<double>>(factorsTowards_(patches_, exponent_));
+    inEffect_ = whenRigid_;
+}
+
+std::vector<double> EdgeStiffening::factorsInEffect() const
+{
+    if (inEffect_) return *inEffect_;
+    if (released_ && appliedWhenReleased_) return factorsTowards_(patches_, exponent_);
+    return {};
+}
+
 bool EdgeStiffening::followMotion(bool allPatchesRigid, const std::vector<bool>& moved)
 {
     if (!automatic_) return false;

@@ -72,12 +72,18 @@ public:
     // movingAndFixed splits the patches by. Returns whether the factors in effect changed (the
     // problem must be rebuilt).
     bool followMotion(bool allPatchesRigid, const std::vector<bool>& moved);
-    // Lets go of the factors once the problem in use has its weights from them (a decomposed
-    // run's part, PartRigidBodyMotion: 8 bytes per directed edge alive through the solver's
-    // set-up otherwise). factors() is then null until followMotion() applies them again, which
-    // computes them again (the distances: a second cost only when a deforming spell ends).
-    // No-op with movingAndFixed's split (its factors depend on the motion seen so far).
+    // Lets go of the factors once the problem in use has its weights from them (8 bytes per
+    // directed edge alive through the solver's set-up, solves and output otherwise: 210 MB at
+    // 10⁶ hexahedra). factors() is then null until followMotion() or restoreFactors() applies
+    // them again, which computes them again (the distances: a second cost only when a
+    // deforming spell ends or the boundary conditions change). No-op with movingAndFixed's
+    // split (its factors depend on the motion seen so far).
     void releaseFactors();
+    // After releaseFactors(): the factors in effect then, computed again (nothing to do
+    // otherwise), for a problem rebuilt with the same stiffening.
+    void restoreFactors();
+    // The factors in effect, as factors() would give them had they not been released (a copy).
+    std::vector<double> factorsInEffect() const;
     // What `stiffening auto` chose, in words, to follow options.describe()'s "stiffening auto":
     // " = power 0.8 inverseDistance (patches) while every prescribed patch moves rigidly" (or
     // the split's words); empty for other stiffening entries or without patches.

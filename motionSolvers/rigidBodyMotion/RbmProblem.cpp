@@ -89,14 +89,18 @@ void RbmProblem::updateGhostNodes(std::span<Vector3> nodeValues) const
 
 RbmProblem RbmProblem::withReferencePoints(std::vector<Vector3> referencePoints) const
 {
-    if (edgeWeightFactorsReleased_)
-        throw std::logic_error("RbmProblem::withReferencePoints: the edge weight factors were released");
     RbmProblem moved = isPart() ? RbmProblem(dimension_, std::move(referencePoints), graph_, constraints_, weighting_, part_)
                                 : RbmProblem(dimension_, std::move(referencePoints), graph_, constraints_, weighting_);
     moved.coupledPairs_ = coupledPairs_;  // checked already
     if (edgeWeightFactors_) {
         moved.edgeWeightFactors_ = edgeWeightFactors_;  // checked already
         moved.computeEdgeWeights();
+    } else if (edgeWeightFactorsReleased_) {
+        // The factors are in the weights only: taken back out of them for the new positions
+        // (to a few units in the last place), then let go of again.
+        moved.edgeWeightFactors_ = std::make_shared<const std::vector<double>>(edgeWeightFactorsFromWeights());
+        moved.computeEdgeWeights();
+        moved.releaseEdgeWeightFactors();
     }
     return moved;
 }
@@ -150,6 +154,7 @@ void RbmProblem::setEdgeWeightFactors(std::shared_ptr<const std::vector<double>>
         }
     }
     edgeWeightFactors_ = std::move(shared);
+    edgeWeightFactorsReleased_ = false;
     computeEdgeWeights();
 }
 
@@ -380,6 +385,31 @@ const std::vector<int>& RbmProblem::edgeTransposeBlock() const
         forEachEdgeBetweenUnknowns([&](int e, int a, int b) { positions[e] = reversePosition(a, b); });
     });
     return edgeTransposeBlock_->positions;
+}
+
+double RbmProblem::plainEdgeWeight(int i, int j) const
+{
+    Vector3 d = referencePoints_[j] - referencePoints_[i];
+    if (dimension_ == 2) d.z = 0.0;  // planar problems ignore z, also in distances
+    const double length = norm(d);
+    switch (weighting_) {
+    case EdgeWeighting::uniform: return 1.0;
+    case EdgeWeighting::inverseDistance: return 1.0 / length;
+    case EdgeWeighting::inverseDistanceSquared: return 1.0 / (length * length);
+    }
+    return 1.0;
+}
+
+std::vector<double> RbmProblem::edgeWeightFactorsFromWeights() const
+{
+    // w_ij and the plain weight are the same bits in both directions (p_j − p_i and p_i − p_j
+    // differ in sign only): the recovered factors are symmetric.
+    const CellNeighbourGraph& g = *graph_;
+    std::vector<double> factors(g.neighbours.size(), 1.0);
+    for (int i = 0; i < nodeCount(); ++i)
+        for (int e = g.offsets[i]; e < g.offsets[i + 1]; ++e)
+            factors[e] = edgeWeights_[e] / plainEdgeWeight(i, g.neighbours[e]);
+    return factors;
 }
 
 void RbmProblem::computeEdgeWeights()

@@ -180,11 +180,14 @@ public:
     void setEdgeWeightFactors(std::shared_ptr<const std::vector<double>> factors);
     const std::vector<double>& edgeWeightFactors() const;
     // Lets go of the factors once the weights hold them (edgeWeightFactors() is then empty;
-    // withReferencePoints() throws std::logic_error). A decomposed run's part solves every step
-    // without sub-steps, so nothing reads them again: with the stiffening's own copy released
-    // too (EdgeStiffening::releaseFactors) that is 8 bytes per directed edge, about 200 bytes a
-    // node of a hexahedral part, no longer alive in GAMG's set-up, the part's memory peak.
+    // withReferencePoints() takes them back out of the weights, edgeWeightFactorsFromWeights).
+    // With the stiffening's own copy released too (EdgeStiffening::releaseFactors) that is 8
+    // bytes per directed edge, about 200 bytes a node of a hexahedral mesh, no longer alive
+    // through the solver's set-up, its solves, the quality check and the output.
     void releaseEdgeWeightFactors();
+    // The factors the weights hold: each weight over the weighting's plain weight of its edge
+    // (equal to the factors given to a few units in the last place; symmetric).
+    std::vector<double> edgeWeightFactorsFromWeights() const;
     // Ties pairs of unknown nodes, u_b = q u_a (replacing any pairs set before; empty: none);
     // kept by withReferencePoints(). Create solvers after this call. Throws
     // std::invalid_argument for a node that is prescribed, in two pairs or paired with itself,
@@ -290,6 +293,8 @@ private:
     std::shared_ptr<const CellNeighbourGraph> graph_;
     std::vector<NodeConstraint> constraints_;
     EdgeWeighting weighting_;
+
+    double plainEdgeWeight(int i, int j) const;  // the weighting's weight, without factors
 
     std::vector<double> edgeWeights_;
     std::shared_ptr<const std::vector<double>> edgeWeightFactors_;  // null: none

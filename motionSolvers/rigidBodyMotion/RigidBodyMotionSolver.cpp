@@ -150,6 +150,12 @@ struct RigidBodyMotionSolver::Impl {
     // problem's), the weighting and the stiffening.
     std::unique_ptr<RbmProblem> problemAround(std::vector<Vector3> points,
                                               std::vector<NodeConstraint> nodeConstraints = {}) const;
+    // The current problem around `points` (a sub-step's mesh): its node classes, pairs and
+    // weight factors (RbmProblem::withReferencePoints).
+    std::unique_ptr<RbmProblem> problemAt(std::vector<Vector3> points) const;
+    InputError notAProblem(const std::invalid_argument& error) const;
+    // Once `problem`'s weights hold the stiffening, its factors go (210 MB at 10⁶ hexahedra).
+    void releaseStiffeningFactors();
 
     // The untangling stage: when state leaves inverted cells that the initial mesh did not
     // have, moves the points around them until none is; the reason tells.
@@ -205,6 +211,15 @@ void RigidBodyMotionSolver::Impl::chooseAutomaticStiffening(std::span<const Vect
     baseSolver.reset();
     problem.reset();
     problem = problemAround(referencePoints, std::move(constraints));
+    releaseStiffeningFactors();
+}
+
+void RigidBodyMotionSolver::Impl::releaseStiffeningFactors()
+{
+    // The weights hold the factors; sub-steps take them back out of the weights
+    // (RbmProblem::withReferencePoints), a rebuild computes them again (restoreFactors).
+    problem->releaseEdgeWeightFactors();
+    stiffening.releaseFactors();
 }
 
 void RigidBodyMotionSolver::Impl::updateProblem()
@@ -239,7 +254,9 @@ void RigidBodyMotionSolver::Impl::updateProblem()
 
     baseSolver.reset();
     problem.reset();
+    stiffening.restoreFactors();
     problem = problemAround(referencePoints, std::move(classes));
+    releaseStiffeningFactors();
     curvedPatches = CurvedPatchProjection(owner.mesh(), owner.points0(), twoD.get(), conditions, unconstrained, *problem);
 }
 
@@ -253,11 +270,7 @@ std::unique_ptr<RbmProblem> RigidBodyMotionSolver::Impl::problemAround(std::vect
                                               options.weighting);
         if (!coupledPairs.empty()) result->setCoupledPairs(coupledPairs);
     } catch (const std::invalid_argument& error) {
-        throw InputError(options.file, 0,
-                         std::string("rigidBodyMotionSolver: the mesh and its boundary conditions do not define an RBM "
-                                     "problem: ") +
-                             error.what() +
-                             " (every group of moving points needs a prescribed patch, e.g. fixedValue, holding it)");
+        throw notAProblem(error);
     }
     if (!interfaceFactors.empty()) {
         // The interface's edges count once (CyclicCoupling.hpp), times any stiffening.
@@ -269,6 +282,24 @@ std::unique_ptr<RbmProblem> RigidBodyMotionSolver::Impl::problemAround(std::vect
         result->setEdgeWeightFactors(stiffening.factors());
     }
     return result;
+}
+
+std::unique_ptr<RbmProblem> RigidBodyMotionSolver::Impl::problemAt(std::vector<Vector3> points) const
+{
+    try {
+        return std::make_unique<RbmProblem>(problem->withReferencePoints(std::move(points)));
+    } catch (const std::invalid_argument& error) {
+        throw notAProblem(error);
+    }
+}
+
+InputError RigidBodyMotionSolver::Impl::notAProblem(const std::invalid_argument& error) const
+{
+    return InputError(options.file, 0,
+                      std::string("rigidBodyMotionSolver: the mesh and its boundary conditions do not define an RBM "
+                                  "problem: ") +
+                          error.what() +
+                          " (every group of moving points needs a prescribed patch, e.g. fixedValue, holding it)");
 }
 
 std::vector<Vector3> RigidBodyMotionSolver::Impl::prescribedTarget() const
@@ -427,7 +458,7 @@ void RigidBodyMotionSolver::Impl::solveInIncrements(std::span<const Vector3> tar
                 points[node].y += displacement[node].y;
                 if (dimension == 3) points[node].z += displacement[node].z;
             }
-            const std::unique_ptr<RbmProblem> stepProblem = problemAround(std::move(points));
+            const std::unique_ptr<RbmProblem> stepProblem = problemAt(std::move(points));
             result = makeRbmSolver(*stepProblem, options)->solve(increment);
         }
         report.iterations += result.iterations;
@@ -511,11 +542,7 @@ int RigidBodyMotionSolver::dimension() const { return impl_->dimension; }
 const PseudoTwoDMesh* RigidBodyMotionSolver::twoDMesh() const { return impl_->twoD.get(); }
 const RbmProblem* RigidBodyMotionSolver::problem() const { return impl_->problem.get(); }
 const RbmState& RigidBodyMotionSolver::state() const { return impl_->state; }
-const std::vector<double>& RigidBodyMotionSolver::stiffeningFactors() const
-{
-    static const std::vector<double> none;
-    return impl_->stiffening.factors() ? *impl_->stiffening.factors() : none;
-}
+std::vector<double> RigidBodyMotionSolver::stiffeningFactors() const { return impl_->stiffening.factorsInEffect(); }
 const std::vector<Label>& RigidBodyMotionSolver::stiffeningPatches() const { return impl_->stiffening.patches(); }
 const std::vector<Label>& RigidBodyMotionSolver::stiffeningMovingPatches() const
 {

@@ -84,7 +84,8 @@ public:
     // The stiffening factors f_ij per graph edge (Stiffening.hpp) of the last solve (before
     // the first: of the construction); empty without stiffening, and with `stiffening auto`
     // when a prescribed patch did not move rigidly.
-    const std::vector<double>& stiffeningFactors() const;
+    // A copy: the solver lets go of them once its problem's weights hold them.
+    std::vector<double> stiffeningFactors() const;
     // The patches the stiffening measures the distance to (indices into mesh().patches; with
     // `stiffening auto`, the default, chosen by automaticStiffeningPatches); empty without stiffening.
     const std::vector<Label>& stiffeningPatches() const;

@@ -588,8 +588,9 @@ TEST(RbmProblemInput, SharedEdgeWeightFactorsAreOneArrayForEveryProblemBuiltFrom
     EXPECT_THROW(sharing.setEdgeWeightFactors(std::shared_ptr<const std::vector<double>>(negative)), std::invalid_argument);
     sharing.setEdgeWeightFactors(std::shared_ptr<const std::vector<double>>());
     EXPECT_TRUE(sharing.edgeWeightFactors().empty());
-    // Released (a decomposed run's part): the weights keep the factors, the problem no longer
-    // holds the array, and a moved copy, which would need them, is refused.
+    // Released: the weights keep the factors, the problem no longer holds the array; a moved
+    // copy (a sub-step's problem) takes them back out of the weights, to a few units in the
+    // last place, and holds no array either.
     const std::vector<double> stiffened = copying.edgeWeights();
     RbmProblem releasing = copying;
     releasing.setEdgeWeightFactors(shared);
@@ -597,7 +598,24 @@ TEST(RbmProblemInput, SharedEdgeWeightFactorsAreOneArrayForEveryProblemBuiltFrom
     EXPECT_TRUE(releasing.edgeWeightFactors().empty());
     EXPECT_EQ(shared.use_count(), 2);  // this test and moved; releasing let go of it
     EXPECT_EQ(releasing.edgeWeights(), stiffened);
-    EXPECT_THROW(releasing.withReferencePoints(stretched), std::logic_error);
+    const std::vector<double> recovered = releasing.edgeWeightFactorsFromWeights();
+    ASSERT_EQ(recovered.size(), factors.size());
+    for (std::size_t e = 0; e < factors.size(); ++e) EXPECT_NEAR(recovered[e], factors[e], 4e-16 * factors[e]);
+    const RbmProblem movedReleased = releasing.withReferencePoints(stretched);
+    EXPECT_TRUE(movedReleased.edgeWeightFactors().empty());
+    EXPECT_EQ(shared.use_count(), 2);
+    const std::vector<double>& expected = moved.edgeWeights();
+    ASSERT_EQ(movedReleased.edgeWeights().size(), expected.size());
+    for (std::size_t e = 0; e < expected.size(); ++e)
+        EXPECT_NEAR(movedReleased.edgeWeights()[e], expected[e], 1e-15 * expected[e]);
+    const CellNeighbourGraph& g = releasing.graph();
+    for (int i = 0; i < releasing.nodeCount(); ++i)  // symmetric, as the factors given
+        for (int e = g.offsets[i]; e < g.offsets[i + 1]; ++e) {
+            const int j = g.neighbours[e];
+            const auto row = g.neighboursOf(j);
+            const auto reverse = g.offsets[j] + (std::lower_bound(row.begin(), row.end(), i) - row.begin());
+            EXPECT_EQ(recovered[e], recovered[reverse]);
+        }
     const RbmProblem plain(2, mesh.points, mesh.graph, prescribeBoundary(mesh), EdgeWeighting::inverseDistanceSquared);
     EXPECT_EQ(sharing.edgeWeights(), plain.edgeWeights());
 }
