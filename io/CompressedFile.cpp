@@ -1,5 +1,6 @@
 #include "CompressedFile.hpp"
 
+#include "GzipOutputFile.hpp"
 #include "InputError.hpp"
 #include "WholeFile.hpp"
 
@@ -105,18 +106,16 @@ std::string gunzip(const std::string& compressed, const fs::path& path)
 // Up to `oneShotLimit` bytes: libdeflate at level 1, the whole file compressed at once into
 // one buffer (contents + 0.1 %) and written. libdeflate compresses a whole buffer in about
 // half of zlib's time at the same level, for files of about the same size; the price is the
-// buffer, a second copy of the file in memory.
-// Beyond it (meshes of 10^7 points and more): zlib level 1, compressed piece by piece into a
-// 128 KiB buffer that goes to the file whenever it is full, without a second copy of the data
-// in memory. Level 1, not OpenFOAM's default 6: any level reads back the same, and level 6
-// takes several times as long for files at most about a tenth smaller (writing's share of a
-// run: docs/rbmMoveMesh.md, "Where a one-step run's time goes").
-void writeGzipStreaming(const fs::path& target, std::string_view contents);
-
+// buffer, a second copy of the file in memory (callers that produce a large file piece by
+// piece use TextFileWriter instead, which comes here for files of one piece only).
+// Beyond it (meshes of 10^7 points and more): zlib level 1 through GzipOutputFile, 128 KiB of
+// buffer, without a second copy of the data in memory.
 void writeGzip(const fs::path& target, std::string_view contents, std::size_t oneShotLimit)
 {
     if (contents.size() > oneShotLimit) {
-        writeGzipStreaming(target, contents);
+        GzipOutputFile out(target);
+        out.write(contents);
+        out.close();
         return;
     }
     libdeflate_compressor* compressor = libdeflate_alloc_compressor(1);
@@ -126,47 +125,11 @@ void writeGzip(const fs::path& target, std::string_view contents, std::size_t on
         libdeflate_gzip_compress(compressor, contents.data(), contents.size(), buffer.data(), buffer.size());
     libdeflate_free_compressor(compressor);
     if (size == 0) throw std::runtime_error("libdeflate failed to compress " + target.string());
-    // To the file in pieces, as the stream below goes (and as gzwrite did).
+    // To the file in pieces, as GzipOutputFile does (and as gzwrite did).
     OutputFile out(target);
     constexpr std::size_t piece = std::size_t{1} << 17;
     for (std::size_t offset = 0; offset < size; offset += piece)
         out.write(std::string_view(buffer.data() + offset, std::min(piece, size - offset)));
-    out.close();
-}
-
-void writeGzipStreaming(const fs::path& target, std::string_view contents)
-{
-    OutputFile out(target);
-    z_stream stream{};
-    // 16 + MAX_WBITS: a gzip header and trailer around the deflate stream, as gzopen writes.
-    if (deflateInit2(&stream, 1, Z_DEFLATED, 16 + MAX_WBITS, 8, Z_DEFAULT_STRATEGY) != Z_OK) {
-        throw std::runtime_error("cannot initialise zlib to write " + target.string());
-    }
-    std::string buffer(1 << 17, '\0');
-    std::size_t consumed = 0;
-    int status = Z_OK;
-    try {
-        while (status != Z_STREAM_END) {
-            // zlib counts in 32 bits: at most 1 GiB of input per call.
-            if (stream.avail_in == 0 && consumed < contents.size()) {
-                const std::size_t chunk = std::min<std::size_t>(contents.size() - consumed, 1u << 30);
-                stream.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(contents.data() + consumed));
-                stream.avail_in = static_cast<uInt>(chunk);
-                consumed += chunk;
-            }
-            stream.next_out = reinterpret_cast<Bytef*>(buffer.data());
-            stream.avail_out = static_cast<uInt>(buffer.size());
-            status = deflate(&stream, consumed == contents.size() ? Z_FINISH : Z_NO_FLUSH);
-            if (status != Z_OK && status != Z_STREAM_END && status != Z_BUF_ERROR) {
-                throw std::runtime_error("zlib failed to compress " + target.string());
-            }
-            out.write(std::string_view(buffer.data(), buffer.size() - stream.avail_out));
-        }
-    } catch (...) {
-        deflateEnd(&stream);
-        throw;
-    }
-    deflateEnd(&stream);
     out.close();
 }
 

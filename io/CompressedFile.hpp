@@ -23,10 +23,13 @@ std::string readFileContents(const std::filesystem::path& path);
 
 // Writes `contents` to `path`, gzip-compressed when `compress` is true (then ".gz" is
 // appended to the name). Returns the path written. Throws std::runtime_error on failure.
+// For the text of a large file produced piece by piece, TextFileWriter.hpp writes the same
+// bytes without holding the whole text (or its compressed copy) in memory.
 std::filesystem::path writeFileContents(const std::filesystem::path& path, std::string_view contents, bool compress);
 
 // Up to this many bytes a gzip file is compressed in one piece (libdeflate, fast; a buffer of
-// the compressed size), beyond it as a stream (zlib, 128 KiB of buffer): the same format.
+// the compressed size), beyond it as a stream (zlib through GzipOutputFile, 128 KiB of
+// buffer): the same format.
 inline constexpr std::size_t oneShotGzipLimit = std::size_t{256} << 20;
 // As above with another limit (tests: the streaming path on small files).
 std::filesystem::path writeFileContents(const std::filesystem::path& path, std::string_view contents, bool compress,

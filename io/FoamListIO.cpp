@@ -1,5 +1,7 @@
 #include "FoamListIO.hpp"
 
+#include "TextFileWriter.hpp"
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -680,9 +682,33 @@ void appendListStart(std::string& out, std::size_t count, bool binary)
     out += binary ? "\n(" : "\n(\n";
 }
 
+// "\nN\n(" before the bytes of a binary list; OpenFOAM writes an empty binary list as the bare
+// count "\nN\n". Returns whether the bytes (and a closing ')') follow.
+bool appendBinaryListStart(std::string& out, std::size_t count)
+{
+    out += '\n';
+    appendLabel(out, static_cast<std::int64_t>(count));
+    out += '\n';
+    if (count == 0) return false;
+    out += '(';
+    return true;
+}
+
 void appendRaw(std::string& out, const void* data, std::size_t bytes)
 {
     out.append(static_cast<const char*>(data), bytes);
+}
+
+// One ascii vector list entry: "(x y z)\n".
+void appendVectorLine(std::string& out, const Vector3& v, int precision)
+{
+    out += '(';
+    appendScalar(out, v.x, precision);
+    out += ' ';
+    appendScalar(out, v.y, precision);
+    out += ' ';
+    appendScalar(out, v.z, precision);
+    out += ")\n";
 }
 
 } // namespace
@@ -690,12 +716,7 @@ void appendRaw(std::string& out, const void* data, std::size_t bytes)
 void appendLabelList(std::string& out, std::span<const Label> values, bool binary)
 {
     if (binary) {
-        out += '\n';
-        appendLabel(out, static_cast<std::int64_t>(values.size()));
-        out += '\n';
-        // OpenFOAM writes an empty binary list as the bare count.
-        if (values.empty()) return;
-        out += '(';
+        if (!appendBinaryListStart(out, values.size())) return;
         appendRaw(out, values.data(), values.size_bytes());
         out += ')';
         return;
@@ -712,11 +733,7 @@ void appendLabelList(std::string& out, std::span<const Label> values, bool binar
 void appendVectorList(std::string& out, std::span<const Vector3> values, bool binary, int precision)
 {
     if (binary) {
-        out += '\n';
-        appendLabel(out, static_cast<std::int64_t>(values.size()));
-        out += '\n';
-        if (values.empty()) return;
-        out += '(';
+        if (!appendBinaryListStart(out, values.size())) return;
         static_assert(sizeof(Vector3) == 3 * sizeof(double));
         appendRaw(out, values.data(), values.size_bytes());
         out += ')';
@@ -724,26 +741,33 @@ void appendVectorList(std::string& out, std::span<const Vector3> values, bool bi
     }
     out.reserve(out.size() + static_cast<std::size_t>(3 * precision + 16) * values.size() + 32);
     appendListStart(out, values.size(), false);
-    for (const Vector3& v : values) {
-        out += '(';
-        appendScalar(out, v.x, precision);
-        out += ' ';
-        appendScalar(out, v.y, precision);
-        out += ' ';
-        appendScalar(out, v.z, precision);
-        out += ")\n";
-    }
+    for (const Vector3& v : values) appendVectorLine(out, v, precision);
     out += ")\n";
+}
+
+// The same bytes as the std::string version above, handed to `out` a piece at a time: the
+// whole list is never in memory as text (binary data goes to the file from `values` itself).
+void appendVectorList(TextFileWriter& out, std::span<const Vector3> values, bool binary, int precision)
+{
+    if (binary) {
+        if (!appendBinaryListStart(out.text(), values.size())) return;
+        static_assert(sizeof(Vector3) == 3 * sizeof(double));
+        out.append(std::string_view(reinterpret_cast<const char*>(values.data()), values.size_bytes()));
+        out.text() += ')';
+        return;
+    }
+    appendListStart(out.text(), values.size(), false);
+    for (const Vector3& v : values) {
+        appendVectorLine(out.text(), v, precision);
+        out.pieceDone();
+    }
+    out.text() += ")\n";
 }
 
 void appendScalarList(std::string& out, std::span<const double> values, bool binary, int precision)
 {
     if (binary) {
-        out += '\n';
-        appendLabel(out, static_cast<std::int64_t>(values.size()));
-        out += '\n';
-        if (values.empty()) return;
-        out += '(';
+        if (!appendBinaryListStart(out, values.size())) return;
         appendRaw(out, values.data(), values.size_bytes());
         out += ')';
         return;
@@ -759,11 +783,7 @@ void appendScalarList(std::string& out, std::span<const double> values, bool bin
 void appendBoolList(std::string& out, const std::vector<bool>& values, bool binary)
 {
     if (binary) {
-        out += '\n';
-        appendLabel(out, static_cast<std::int64_t>(values.size()));
-        out += '\n';
-        if (values.empty()) return;
-        out += '(';
+        if (!appendBinaryListStart(out, values.size())) return;
         for (bool v : values) out += static_cast<char>(v ? 1 : 0);
         out += ')';
         return;

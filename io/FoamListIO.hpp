@@ -28,6 +28,8 @@
 
 namespace rbm::io {
 
+class TextFileWriter;   // TextFileWriter.hpp
+
 // A cursor over the body of one file (the text after its FoamFile header).
 class FoamListReader {
 public:
@@ -133,6 +135,9 @@ void appendLabel(std::string& out, std::int64_t value);
 // "\nN\n(" raw bytes ")" in binary (labels 32-bit, scalars 64-bit).
 void appendLabelList(std::string& out, std::span<const Label> values, bool binary);
 void appendVectorList(std::string& out, std::span<const Vector3> values, bool binary, int precision);
+// The same text streamed through `out` (TextFileWriter.hpp), a piece at a time: for lists of
+// a whole mesh's points, whose text would otherwise be held whole (tens of MB).
+void appendVectorList(TextFileWriter& out, std::span<const Vector3> values, bool binary, int precision);
 void appendScalarList(std::string& out, std::span<const double> values, bool binary, int precision);
 void appendBoolList(std::string& out, const std::vector<bool>& values, bool binary);
 // ascii faceList: one `n(p0 p1 ...)` a line.

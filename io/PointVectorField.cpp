@@ -271,8 +271,12 @@ fs::path writePointVectorField(const fs::path& path, std::span<const Vector3> in
 {
     std::string object = path.filename().string();
     const std::string location = options.location.empty() ? path.parent_path().filename().string() : options.location;
-    std::string out = foamFileHeaderText(false, "pointVectorField", location, object);
     if (!path.parent_path().empty()) fs::create_directories(path.parent_path());
+    // Streamed: the text of internalField (~55 MB for 10^6 points) goes to the file a piece at
+    // a time instead of being held whole (and compressed whole) next to the solver's memory.
+    TextFileWriter writer(path, options.compressed, options.pieceSize);
+    std::string& out = writer.text();
+    out += foamFileHeaderText(false, "pointVectorField", location, object);
     appendDimensions(out, options.dimensions);
 
     bool uniform = !internalField.empty();
@@ -287,7 +291,7 @@ fs::path writePointVectorField(const fs::path& path, std::span<const Vector3> in
         out += ");\n\n";
     } else {
         out += "internalField   nonuniform List<vector> ";
-        appendVectorList(out, internalField, false, options.precision);
+        appendVectorList(writer, internalField, false, options.precision);
         out += ";\n\n";
     }
 
@@ -305,10 +309,12 @@ fs::path writePointVectorField(const fs::path& path, std::span<const Vector3> in
         }
         appendDictionaryEntries(out, patchField.dictionary, 2, options.precision);
         out += "    }\n";
+        // A patch's nonuniform value is a list of its points: a piece boundary between patches.
+        writer.pieceDone();
     }
     out += "}\n";
     out += foamFileFooterText();
-    return writeFileContents(path, out, options.compressed);
+    return writer.finish();
 }
 
 } // namespace rbm::io

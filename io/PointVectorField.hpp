@@ -28,8 +28,10 @@
 
 #include "FoamDictionary.hpp"
 #include "PolyMesh.hpp"
+#include "TextFileWriter.hpp"
 
 #include <array>
+#include <cstddef>
 #include <filesystem>
 #include <span>
 #include <string>
@@ -76,6 +78,9 @@ struct PointVectorFieldWriteOptions {
     int precision = 6;          // controlDict writePrecision
     bool compressed = false;    // controlDict writeCompression: the file gets ".gz"
     std::string location;       // header location; default: the name of the file's folder (the time)
+    // Bytes of text held before they go to the file (TextFileWriter.hpp): the write's memory
+    // is about this much whatever the size of the field. Tests use small pieces.
+    std::size_t pieceSize = TextFileWriter::defaultPieceSize;
 };
 
 // Writes an ascii pointVectorField: `internalField` (written `uniform` when all values are

@@ -1,6 +1,7 @@
 #include "PolyMeshWriter.hpp"
 
 #include "CompressedFile.hpp"
+#include "TextFileWriter.hpp"
 
 #include <algorithm>
 #include <system_error>
@@ -11,28 +12,26 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Writes `contents` to `file` (or `file`.gz) and removes the other variant, which would
+// Removes the other variant of `file` (plain or .gz) than the one just written, which would
 // otherwise shadow (plain) or confuse (.gz) readers of the new file.
-fs::path writeMeshFile(const fs::path& file, const std::string& contents, bool compressed)
+void removeTwin(const fs::path& file, bool compressed)
 {
-    const fs::path written = writeFileContents(file, contents, compressed);
     const fs::path twin = compressed ? file : fs::path(file.string() + ".gz");
     std::error_code ignored;
     fs::remove(twin, ignored);
+}
+
+// Writes `contents` to `file` (or `file`.gz) and removes the other variant.
+fs::path writeMeshFile(const fs::path& file, const std::string& contents, bool compressed)
+{
+    const fs::path written = writeFileContents(file, contents, compressed);
+    removeTwin(file, compressed);
     return written;
 }
 
 int pointPrecision(const FoamWriteOptions& options)
 {
     return std::max(options.precision, options.minimumPointPrecision);
-}
-
-std::string pointsFileText(std::span<const Vector3> points, const std::string& location, const FoamWriteOptions& options)
-{
-    std::string text = foamFileHeaderText(options.binary, "vectorField", location, "points");
-    appendVectorList(text, points, options.binary, pointPrecision(options));
-    text += foamFileFooterText();
-    return text;
 }
 
 // "constant/polyMesh" from ".../case/constant/polyMesh".
@@ -124,10 +123,19 @@ std::string zonesFileText(const std::vector<Zone>& zones, const char* object, co
 
 } // namespace
 
+// Streamed (TextFileWriter.hpp): the one file of a time step as large as the mesh (~60 MB of
+// ascii text for 10^6 points), written at every write time, goes to the file a piece at a
+// time instead of being held whole (and compressed whole).
 fs::path writePointsFile(const fs::path& file, std::span<const Vector3> points, const std::string& location,
-                         const FoamWriteOptions& options)
+                         const FoamWriteOptions& options, std::size_t pieceSize)
 {
-    return writeMeshFile(file, pointsFileText(points, location, options), options.compressed);
+    TextFileWriter writer(file, options.compressed, pieceSize);
+    writer.text() += foamFileHeaderText(options.binary, "vectorField", location, "points");
+    appendVectorList(writer, points, options.binary, pointPrecision(options));
+    writer.text() += foamFileFooterText();
+    const fs::path written = writer.finish();
+    removeTwin(file, options.compressed);
+    return written;
 }
 
 fs::path writePolyMeshPoints(const fs::path& caseDir, const std::string& timeName, std::span<const Vector3> points,
@@ -144,7 +152,7 @@ void writePolyMesh(const fs::path& polyMeshDir, const PolyMesh& mesh, const Foam
     const std::string location = locationOf(polyMeshDir);
     const bool binary = options.binary;
 
-    writeMeshFile(polyMeshDir / "points", pointsFileText(mesh.points, location, options), options.compressed);
+    writePointsFile(polyMeshDir / "points", mesh.points, location, options);
 
     {
         // OpenFOAM writes faces as a faceCompactList in binary and as a faceList in ascii.

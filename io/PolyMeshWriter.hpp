@@ -12,8 +12,10 @@
 
 #include "FoamListIO.hpp"
 #include "PolyMesh.hpp"
+#include "TextFileWriter.hpp"
 #include "Vector3.hpp"
 
+#include <cstddef>
 #include <filesystem>
 #include <span>
 #include <string>
@@ -26,9 +28,11 @@ std::filesystem::path writePolyMeshPoints(const std::filesystem::path& caseDir, 
                                           std::span<const Vector3> points, const FoamWriteOptions& options);
 
 // Writes a points file at `file` (".gz" appended when compressed) with header location
-// `location` (e.g. "0.5/polyMesh"). Returns the path written.
+// `location` (e.g. "0.5/polyMesh"). Returns the path written. The text goes to the file in
+// pieces of `pieceSize` bytes (TextFileWriter.hpp), never whole; tests use small pieces.
 std::filesystem::path writePointsFile(const std::filesystem::path& file, std::span<const Vector3> points,
-                                      const std::string& location, const FoamWriteOptions& options);
+                                      const std::string& location, const FoamWriteOptions& options,
+                                      std::size_t pieceSize = TextFileWriter::defaultPieceSize);
 
 // Writes points, faces, owner, neighbour, boundary and, when the mesh has zones, pointZones,
 // faceZones and cellZones into `polyMeshDir` (created as needed). The header location is the

@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -242,6 +243,34 @@ TEST(PointVectorField, WriterUsesUniformWhenAllValuesAreEqualAndCompresses)
     const PointVectorField back = rbm::io::readPointVectorField(folder / "1" / "pointDisplacement", mesh);
     EXPECT_EQ(patchValues(back.boundaryField[static_cast<std::size_t>(upperWall)], 10, back.header), newValues);
     EXPECT_EQ(back.boundaryField[4].type, "empty");
+}
+
+TEST(PointVectorField, StreamedWriteIsTheWholeTextWrite)
+{
+    // A field of 5000 points written in pieces of 512 bytes (about 300 of them) and in one
+    // piece (the whole text, then writeFileContents: how every field was written before):
+    // the same text, plain and gzip-compressed.
+    const PolyMesh& mesh = fixtureMesh();
+    const PointVectorField field = rbm::io::readPointVectorField(fixture("binary/1/pointDisplacement"), mesh);
+    std::vector<Vector3> values;
+    for (int i = 0; i < 5000; ++i) values.push_back({1e-3 * std::sin(i), -0.25 * i, i % 7 == 0 ? 0.0 : 1.0 / (i + 3)});
+    const fs::path folder = scratchFolder("streamed");
+    for (const bool compressed : {false, true}) {
+        SCOPED_TRACE(compressed ? "gzip" : "plain");
+        rbm::io::PointVectorFieldWriteOptions options;
+        options.compressed = compressed;
+        options.location = "0.5";   // the same header in both folders
+        options.pieceSize = 512;
+        const fs::path pieces = rbm::io::writePointVectorField(folder / "pieces" / "pointDisplacement", values,
+                                                               field.boundaryField, options);
+        options.pieceSize = std::size_t{1} << 30;
+        const fs::path whole = rbm::io::writePointVectorField(folder / "whole" / "pointDisplacement", values,
+                                                              field.boundaryField, options);
+        const std::string text = rbm::io::readFileContents(whole);
+        EXPECT_GT(text.size(), 100u * 512);
+        EXPECT_EQ(rbm::io::readFileContents(pieces), text);
+        EXPECT_NE(text.find("location    \"0.5\";"), std::string::npos);
+    }
 }
 
 TEST(PointVectorField, DictionaryWriterLaysOutEntriesLikeOpenFoam)

@@ -125,6 +125,33 @@ TEST(PolyMeshWriter, WritesTheHeaderOpenFoamWrites)
     EXPECT_NE(readText(polyMeshDir / "faces").find("class       faceCompactList;"), std::string::npos);
 }
 
+TEST(PolyMeshWriter, PointsWrittenInPiecesAreTheWholeTextWrite)
+{
+    // The points file streamed in pieces of 256 bytes (ascii: ~50 pieces; binary: the raw
+    // block larger than a piece) is the text the whole-string writer built (header, the list
+    // of FoamListIO's std::string appendVectorList, footer), in every format.
+    TempDir dir("pieces");
+    const std::vector<Vector3>& points = binaryFixture().points;
+    for (const bool binary : {false, true}) {
+        for (const bool compressed : {false, true}) {
+            SCOPED_TRACE(std::string(binary ? "binary" : "ascii") + (compressed ? " gzip" : ""));
+            const FoamWriteOptions options{.binary = binary, .compressed = compressed};
+            std::string whole = rbm::io::foamFileHeaderText(binary, "vectorField", "1/polyMesh", "points");
+            rbm::io::appendVectorList(whole, points, binary, std::max(options.precision, options.minimumPointPrecision));
+            whole += rbm::io::foamFileFooterText();
+            ASSERT_GT(whole.size(), 20u * 256);
+            const fs::path written = rbm::io::writePointsFile(dir.path() / "points", points, "1/polyMesh", options, 256);
+            EXPECT_EQ(written.filename(), compressed ? "points.gz" : "points");
+            EXPECT_EQ(rbm::io::readFileContents(written), whole);
+            if (!compressed) {
+                EXPECT_EQ(readText(written), whole);
+            }
+            EXPECT_FALSE(fs::exists(compressed ? dir.path() / "points" : dir.path() / "points.gz"));  // the twin
+            EXPECT_EQ(rbm::io::readPolyMeshPoints(written).size(), points.size());
+        }
+    }
+}
+
 TEST(PolyMeshWriter, ReplacesTheStaleTwinOfACompressedFile)
 {
     TempDir dir("twin");
