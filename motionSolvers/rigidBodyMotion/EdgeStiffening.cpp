@@ -58,6 +58,21 @@ EdgeStiffening::EdgeStiffening(const RigidBodyMotionOptions& options, const Poly
                          return stiffeningFactors(graph, referencePoints, dimension, surface, exponent);
                      })
 {
+    if (!automatic_ || dimension != 2 || options.weighting != EdgeWeighting::inverseDistanceSquared) return;
+    translationSource_ = [&graph, &referencePoints]() {
+        // f_ij = |d_ij| / h_min: 1/|d|² weights become 1/|d| (over h_min).
+        std::vector<double> factors(graph.neighbours.size());
+        double shortest = 0.0;
+        for (int i = 0; i < graph.nodeCount(); ++i)
+            for (int e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e) {
+                Vector3 d = referencePoints[graph.neighbours[e]] - referencePoints[i];
+                d.z = 0.0;
+                factors[e] = norm(d);
+                if (factors[e] > 0.0 && (shortest == 0.0 || factors[e] < shortest)) shortest = factors[e];
+            }
+        for (double& f : factors) f = f > 0.0 ? f / shortest : 1.0;
+        return factors;
+    };
 }
 
 EdgeStiffening::EdgeStiffening(const RigidBodyMotionOptions& options, const PolyMesh& mesh, int dimension,
@@ -105,9 +120,19 @@ std::vector<double> EdgeStiffening::factorsInEffect() const
     return {};
 }
 
-bool EdgeStiffening::followMotion(bool allPatchesRigid, const std::vector<bool>& moved)
+bool EdgeStiffening::followMotion(bool allPatchesRigid, const std::vector<bool>& moved, bool translation)
 {
     if (!automatic_) return false;
+    if (translation && translationSource_ && !released_) {
+        if (!translationComputed_) {
+            std::vector<double> factors = translationSource_();
+            if (!factors.empty()) translationWeights_ = std::make_shared<const std::vector<double>>(std::move(factors));
+            translationComputed_ = true;
+        }
+        if (inEffect_ == translationWeights_) return false;
+        inEffect_ = translationWeights_;
+        return true;
+    }
     if (released_) {
         // The rule below on the state the factors had when released; applying them again
         // computes them again.
@@ -148,7 +173,7 @@ bool EdgeStiffening::followMotion(bool allPatchesRigid, const std::vector<bool>&
             return true;
         }
     }
-    if (inEffect_) return false;
+    if (inEffect_ && inEffect_ == whenRigid_) return false;
     if (!whenRigid_)  // released while not applied, then taken off the release by a deforming step
         whenRigid_ = std::make_shared<const std::vector<double>>(factorsTowards_(patches_, exponent_));
     inEffect_ = whenRigid_;

@@ -20,6 +20,17 @@
 // there is nothing to tell apart, and auto's single factor applies. The factors are computed
 // at the first solve that moves a patch, again only when the set of moving patches grows.
 //
+// Translations (2D, `stiffening auto` with the default solver's transverse penalty,
+// TransverseGradientPenalty.hpp): while every moving prescribed point moves by one vector
+// towards fixed walls that face it (TransverseGradientPenalty::translationTowardsFixedWalls),
+// the factors are f_ij = |d_ij| / h_min instead, which turn the default 1/|d|² weights into
+// 1/|d| ones (no stiffening; other weightings: no factors). A body translating towards a wall
+// squeezes the cells between uniformly only with those: the stiffening makes the cells far
+// from the body the softest, and 1/|d|² weights the largest cells, so the squeeze collects
+// there (OpenFOAM's movingCone with the penalty: stiffening auto stops at step 450 of 600,
+// stiffening none with 1/|d|² at 559–568, 1/|d| runs to the end; docs/motionSolver.md,
+// "Translations").
+//
 // The factors are shared with the problems built from them (one array of about 200 bytes per
 // cell in 3D instead of three).
 
@@ -71,7 +82,12 @@ public:
     // rigidly; `moved` (per mesh patch): whether the patch has moved in some solve so far, which
     // movingAndFixed splits the patches by. Returns whether the factors in effect changed (the
     // problem must be rebuilt).
-    bool followMotion(bool allPatchesRigid, const std::vector<bool>& moved);
+    // `translation`: every moving prescribed point moves by one vector and the transverse
+    // penalty applies (TransverseGradientPenalty::translationTowardsFixedWalls; the translation
+    // factors above apply, where set).
+    bool followMotion(bool allPatchesRigid, const std::vector<bool>& moved, bool translation = false);
+    // Whether the factors in effect are the translation factors.
+    bool translationFactorsInEffect() const { return inEffect_ && inEffect_ == translationWeights_; }
     // Lets go of the factors once the problem in use has its weights from them (8 bytes per
     // directed edge alive through the solver's set-up, solves and output otherwise: 210 MB at
     // 10⁶ hexahedra). factors() is then null until followMotion() or restoreFactors() applies
@@ -102,6 +118,11 @@ private:
     int dimension_ = 3;
     // What the factors are computed by (movingAndFixed computes them at the first solve).
     FactorSource factorsTowards_;
+    // The translation factors (set by the first constructor in 2D with 1/|d|² weights; empty:
+    // none) and the factors once computed.
+    std::function<std::vector<double>()> translationSource_;
+    std::shared_ptr<const std::vector<double>> translationWeights_;
+    bool translationComputed_ = false;
 };
 
 } // namespace rbm::motion

@@ -75,6 +75,15 @@ NeighbourhoodScaling effectiveScaling(const RigidBodyMotionOptions& options, int
     return options.scaling;
 }
 
+double effectiveTransverseStiffness(const RigidBodyMotionOptions& options, int dimension)
+{
+    if (!options.automaticTransverseStiffness) return options.transverseStiffness;
+    const bool reducedNewton = options.coupling == RbmCoupling::coupled &&
+                               options.formulation == RbmFormulation::nonlinear &&
+                               options.algorithm == RbmAlgorithm::reducedNewton;
+    return reducedNewton && dimension == 2 ? automaticTransverseStiffness : 0.0;
+}
+
 std::unique_ptr<RbmSolver> makeRbmSolver(const RbmProblem& problem, const RigidBodyMotionOptions& options)
 {
     if (options.coupling == RbmCoupling::decoupled) return makeDecoupledSolver(problem, options);
@@ -102,6 +111,7 @@ std::unique_ptr<RbmSolver> makeRbmSolver(const RbmProblem& problem, const RigidB
         reduced.displacementTolerance = options.displacementTolerance;
         if (options.maxIterations) reduced.maximumIterations = *options.maxIterations;
         reduced.scaling = effectiveScaling(options, problem.dimension());
+        reduced.transverseStiffness = problem.isPart() ? 0.0 : effectiveTransverseStiffness(options, problem.dimension());
         return std::make_unique<ReducedNewtonSolver>(problem, reduced);
     }
     case RbmAlgorithm::newton: break;

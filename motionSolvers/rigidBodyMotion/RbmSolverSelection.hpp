@@ -35,6 +35,17 @@ inline constexpr int defaultLocalGlobalMaximumIterations = 200;
 // that case).
 inline constexpr double automaticScaleStiffness = 0.3;
 
+// `transverseStiffness auto`: λ of the penalty on the displacement's variation across a
+// translation (TransverseGradientPenalty.hpp) for the default solver in 2D. Measured on
+// OpenFOAM's movingCone (docs/motionSolver.md, "Translations"): with the translation weights of
+// stiffening auto (EdgeStiffening.hpp) λ = 100 runs all 600 steps at 22.78° worst
+// non-orthogonality, λ = 1000 at 22.96°; the rigid energy alone stops at step 361.
+inline constexpr double automaticTransverseStiffness = 100.0;
+// The λ in effect for a problem of this dimension: auto is automaticTransverseStiffness for
+// the default solver (coupled nonlinear reducedNewton) in 2D, 0 elsewhere; an explicit value
+// as written.
+double effectiveTransverseStiffness(const RigidBodyMotionOptions& options, int dimension);
+
 // The neighbourhoods' scaling in effect for a problem of this dimension: `scaling auto` is
 // automaticScaleStiffness for the default solver (reducedNewton) in 2D and rigid elsewhere;
 // an explicit value as written (rbm::InputError for a scaling other than rigid in 3D).

@@ -39,7 +39,7 @@ double defaultAbsoluteTolerance(const RbmProblem& problem)
 ReducedNewtonSolver::ReducedNewtonSolver(const RbmProblem& problem, ReducedNewtonOptions options)
     : problem_(problem), options_(options),
       preconditioner_(problem, options.linearSolver, options.laplacianRelativeTolerance),
-      reducedEnergy_(problem, options.scaling),
+      reducedEnergy_(problem, options.scaling, options.transverseStiffness),
       relativeDisplacement_(problem, options.displacementTolerance > 0.0),
       warmStart_(problem, reducedEnergy_, preconditioner_, relativeDisplacement_,
                  {options.turnedStart, options.correctionMemory, options.harmonicBasis, options.displacementTolerance}),
@@ -84,6 +84,9 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
     problem_.checkNodeArray(prescribedDisplacement, "prescribed displacement");
     if (problem_.totalUnknownNodeCount() == 0) return prescribedOnlyResult(problem_, prescribedDisplacement);
     const bool displacementTest = options_.displacementTolerance > 0.0;
+    if (options_.transverseStiffness > 0.0)
+        reducedEnergy_.setTranslation(
+            TransverseGradientPenalty::translationTowardsFixedWalls(problem_, prescribedDisplacement));
     const CompactUnknowns unknowns(problem_, prescribedDisplacement);
     WarmStart::Start start = warmStart_.start(prescribedDisplacement, initialGuess, unknowns);
     // Moved, not copied: record() below reads the start's predictor only, and a copy would keep

@@ -74,6 +74,10 @@ struct ReducedNewtonOptions {
     bool harmonicBasis = true;
     // Rigid neighbourhoods (the thesis' energy) or similarities (NeighbourhoodScaling.hpp).
     NeighbourhoodScaling scaling;
+    // λ of the penalty on the displacement's variation across a translation
+    // (TransverseGradientPenalty.hpp), on in the solves whose moving prescribed nodes all
+    // translate by one vector towards fixed walls facing it, along it; 0: off.
+    double transverseStiffness = 0.0;
 };
 
 class ReducedNewtonSolver : public RbmSolver {

@@ -228,7 +228,7 @@ const std::vector<std::string_view>& RigidBodyMotionOptions::keywords()
     static const std::vector<std::string_view> words{
         "coupling",  "formulation",   "algorithm",         "weighting",     "subSteps",
         "maxSubStepSplits", "maxSubSteps", "tolerance", "relativeTolerance", "displacementTolerance", "maxIterations",
-        "linearSolver", "petscOptions", "stiffening", "untangle", "scaling", "floatingPatches"};
+        "linearSolver", "petscOptions", "stiffening", "untangle", "scaling", "transverseStiffness", "floatingPatches"};
     return words;
 }
 
@@ -258,6 +258,10 @@ std::string RigidBodyMotionOptions::describe() const
         if (scaling.rigid()) text << ", scaling rigid";
         else if (scaling.stiffness == 0.0) text << ", scaling similar";
         else text << ", scaling " << scaling.stiffness;
+    }
+    if (!automaticTransverseStiffness) {
+        if (transverseStiffness > 0.0) text << ", transverseStiffness " << transverseStiffness;
+        else text << ", transverseStiffness none";
     }
     return text.str();
 }
@@ -338,6 +342,25 @@ RigidBodyMotionOptions RigidBodyMotionOptions::read(const io::Dictionary& coeffi
         } else if (keyword == "scaling") {
             options.automaticScaling = readScaling(entry, options.scaling);
             options.scalingLine = entry.line();
+        } else if (keyword == "transverseStiffness") {
+            const std::string expected = "'transverseStiffness' must be auto, none or a number ≥ 0";
+            if (entry.isDictionary()) failAt(entry, expected);
+            io::TokenStream stream = entry.stream();
+            if (stream.atEnd()) failAt(entry, expected);
+            if (stream.peek().kind == io::Token::Kind::Word) {
+                const std::string word = stream.readWord();
+                if (word != "none" && word != "auto") failAt(entry, "invalid value '" + word + "': " + expected);
+                options.automaticTransverseStiffness = word == "auto";
+                options.transverseStiffness = 0.0;
+            } else {
+                options.automaticTransverseStiffness = false;
+                options.transverseStiffness = stream.readScalar();
+                if (!(options.transverseStiffness >= 0.0) || !std::isfinite(options.transverseStiffness))
+                    failAt(entry, expected + ", got " + entry.valueText());
+            }
+            if (!stream.atEnd())
+                failAt(entry, "unexpected '" + stream.peek().text + "' after the value of 'transverseStiffness'");
+            options.transverseStiffnessLine = entry.line();
         } else if (keyword == "floatingPatches") {
             io::TokenStream stream = entry.stream();
             if (stream.atEnd()) failAt(entry, "'floatingPatches' needs a list of patches, e.g. (outlet)");
@@ -352,6 +375,12 @@ RigidBodyMotionOptions RigidBodyMotionOptions::read(const io::Dictionary& coeffi
         throw InputError(options.file, options.scalingLine,
                          "'scaling' other than rigid needs the default solver (coupling coupled, formulation "
                          "nonlinear, algorithm reducedNewton); the thesis' variants fit rotations only");
+    if (options.transverseStiffness > 0.0 &&
+        (options.coupling != RbmCoupling::coupled || options.formulation != RbmFormulation::nonlinear ||
+         options.algorithm != RbmAlgorithm::reducedNewton))
+        throw InputError(options.file, options.transverseStiffnessLine,
+                         "'transverseStiffness' needs the default solver (coupling coupled, formulation nonlinear, "
+                         "algorithm reducedNewton)");
     return options;
 }
 

@@ -31,6 +31,13 @@
 //         scaling           auto;                 // auto | rigid | similar | μ ≥ 0: neighbourhoods may
 //                                                 //   also scale (reducedNewton in 2D; auto: similar
 //                                                 //   there, rigid elsewhere; NeighbourhoodScaling.hpp)
+//         transverseStiffness auto;             // auto | none | λ ≥ 0: penalty on the displacement's
+//                                                 //   variation across a translation (reducedNewton;
+//                                                 //   only in the solves where every moving prescribed
+//                                                 //   point moves by one vector towards fixed walls
+//                                                 //   facing it; auto: 100 in 2D, with
+//                                                 //   stiffening auto's translation weights, none in 3D;
+//                                                 //   TransverseGradientPenalty.hpp)
 //         floatingPatches   (outlet "free.*");    // patches (names, groups or regular expressions)
 //                                                 //   whose unconstrained points move freely
 //     }
@@ -141,6 +148,12 @@ struct RigidBodyMotionOptions {
     bool automaticScaling = true;
     NeighbourhoodScaling scaling;      // when not automatic
     int scalingLine = 0;               // of the entry, for the error in 3D
+    // λ of the penalty on the displacement's variation across a translation
+    // (TransverseGradientPenalty.hpp; 0: `none`). `auto` (the default, automaticTransverseStiffness):
+    // effectiveTransverseStiffness in RbmSolverSelection.hpp.
+    bool automaticTransverseStiffness = true;
+    double transverseStiffness = 0.0;  // when not automatic
+    int transverseStiffnessLine = 0;
     // Patches whose condition neither prescribes nor slides their points (zeroGradient,
     // calculated, ...) keep their surface by default: the points slide on it. Listed here (names,
     // groups or regular expressions, as written), they float like interior points instead.

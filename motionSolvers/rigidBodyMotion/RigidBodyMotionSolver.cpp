@@ -22,6 +22,7 @@
 #include "SubStepSplitting.hpp"
 #include "SubStepping.hpp"
 #include "BoundaryPath.hpp"
+#include "TransverseGradientPenalty.hpp"
 #include "UnconstrainedPatches.hpp"
 
 #include <algorithm>
@@ -204,7 +205,12 @@ void RigidBodyMotionSolver::Impl::chooseAutomaticStiffening(std::span<const Vect
     for (std::size_t p = 0; p + 1 < groups.offsets.size(); ++p)
         for (int k = groups.offsets[p]; !movedPatches[p] && k < groups.offsets[p + 1]; ++k)
             movedPatches[p] = !(target[groups.nodes[k]] == Vector3{});
-    if (!stiffening.followMotion(rigid, movedPatches)) return;
+    // A translation (every moving prescribed point by one vector, towards fixed walls that face
+    // it) with the transverse penalty in effect: the translation factors (EdgeStiffening.hpp)
+    // instead of the stiffening.
+    const bool translation = effectiveTransverseStiffness(options, dimension) > 0.0 &&
+                             !(TransverseGradientPenalty::translationTowardsFixedWalls(*problem, target) == Vector3{});
+    if (!stiffening.followMotion(rigid, movedPatches, translation)) return;
     // The old problem goes before the new one is built: the default's factors are first applied
     // here, at every run's first solve, and two problems at once would raise a large run's peak.
     std::vector<NodeConstraint> constraints = problem->constraints();

@@ -12,7 +12,8 @@
 
 namespace rbm::motion {
 
-ReducedEnergy::ReducedEnergy(const RbmProblem& problem, NeighbourhoodScaling scaling) : problem_(problem)
+ReducedEnergy::ReducedEnergy(const RbmProblem& problem, NeighbourhoodScaling scaling, double transverseStiffness)
+    : problem_(problem), transverse_(problem, transverseStiffness)
 {
     const int dim = problem.dimension();
     if (dim != 2 && !scaling.rigid())
@@ -45,9 +46,15 @@ double ReducedEnergy::sumOverRanks(double value) const
     return exchange ? exchange->sum(value) : value;
 }
 
+bool ReducedEnergy::setTranslation(const Vector3& direction)
+{
+    transverse_.setDirection(direction);
+    return transverse_.active();
+}
+
 double ReducedEnergy::fitAndEnergy(std::span<const Vector3> displacement, std::vector<Matrix3>& rotations) const
 {
-    if (planar_) return planar_->fitAndEnergy(displacement, rotations);
+    if (planar_) return planar_->fitAndEnergy(displacement, rotations) + transverse_.energy(displacement);
     fitNodeRotations(problem_, displacement, rotations);
     const CellNeighbourGraph& graph = problem_.graph();
     const std::vector<Vector3>& x = problem_.referencePoints();
@@ -70,7 +77,7 @@ double ReducedEnergy::fitAndEnergy(std::span<const Vector3> displacement, std::v
     }
     double sum = 0.0;
     for (double value : nodeEnergy) sum += value;
-    return 0.5 * sumOverRanks(sum);
+    return 0.5 * sumOverRanks(sum) + transverse_.energy(displacement);
 }
 
 void ReducedEnergy::gradient(std::span<const Vector3> displacement, std::span<const Matrix3> rotations,
@@ -78,6 +85,7 @@ void ReducedEnergy::gradient(std::span<const Vector3> displacement, std::span<co
 {
     if (planar_) {
         planar_->gradient(displacement, rotations, g);
+        transverse_.addGradient(displacement, g);
         problem_.projectSliding(g, problem_.dimension());
         return;
     }
@@ -104,6 +112,7 @@ void ReducedEnergy::gradient(std::span<const Vector3> displacement, std::span<co
         }
         for (int q = 0; q < dim; ++q) g[static_cast<std::size_t>(a) * dim + q] = sum[q];
     }
+    transverse_.addGradient(displacement, g);
     problem_.projectSliding(g, dim);
 }
 
@@ -118,15 +127,23 @@ void ReducedEnergy::prepareHessian(std::span<const Vector3> displacement, std::s
 
 void ReducedEnergy::applyHessian(std::span<const double> v, std::span<double> y)
 {
-    if (hessian3D_) {
-        hessian3D_->apply(v, y);  // projects onto sliding planes itself
-        return;
-    }
     const int dim = problem_.dimension();
     std::vector<double>& projected = projected_;
+    if (hessian3D_) {
+        hessian3D_->apply(v, y);  // projects onto sliding planes itself
+        if (!transverse_.active()) return;
+        projected.assign(v.begin(), v.end());
+        problem_.projectSliding(projected, dim);
+        std::vector<double> added(y.size(), 0.0);
+        transverse_.addHessianProduct(projected, added);
+        problem_.projectSliding(added, dim);
+        for (std::size_t k = 0; k < y.size(); ++k) y[k] += added[k];
+        return;
+    }
     projected.assign(v.begin(), v.end());
     problem_.projectSliding(projected, dim);
     planar_->applyHessian(projected, y);
+    transverse_.addHessianProduct(projected, y);
     problem_.projectSliding(y, dim);
 }
 

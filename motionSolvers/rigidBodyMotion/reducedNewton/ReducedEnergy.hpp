@@ -34,10 +34,15 @@
 // the owned nodes (their terms, fits and rows; the ghosts' rotations come from their owners,
 // the ghost rows of g and S v are zero) and the energy and the rounding level are summed over
 // the ranks. Equal to the whole problem's to rounding (the sums run in another order).
+//
+// With `transverseStiffness λ` the energy is Ẽ + E_t, E_t the penalty on the displacement's
+// variation across a translation (TransverseGradientPenalty.hpp, quadratic in u and free of the
+// rotations): every method below adds its value, gradient and Hessian product.
 
 #include "NeighbourhoodScaling.hpp"
 #include "RbmEnergy.hpp"
 #include "RbmProblem.hpp"
+#include "TransverseGradientPenalty.hpp"
 
 #include <memory>
 #include <span>
@@ -52,10 +57,16 @@ class ReducedEnergy {
 public:
     // scaling: rigid neighbourhoods (the thesis' energy, the default) or similarities
     // (NeighbourhoodScaling.hpp; planar problems only, std::invalid_argument in 3D).
-    explicit ReducedEnergy(const RbmProblem& problem, NeighbourhoodScaling scaling = {});
+    // transverseStiffness: λ of TransverseGradientPenalty.hpp (0: none, the default).
+    explicit ReducedEnergy(const RbmProblem& problem, NeighbourhoodScaling scaling = {}, double transverseStiffness = 0.0);
     ~ReducedEnergy();
     ReducedEnergy(const ReducedEnergy&) = delete;
     ReducedEnergy& operator=(const ReducedEnergy&) = delete;
+
+    // The translation direction of the transverse penalty for the next evaluations (zero: off;
+    // no effect without transverseStiffness). Returns whether the penalty is on.
+    bool setTranslation(const Vector3& direction);
+    const TransverseGradientPenalty& transversePenalty() const { return transverse_; }
 
     // Fits R*(u) into rotations (one per node) and returns Ẽ(u); u one displacement per node.
     double fitAndEnergy(std::span<const Vector3> displacement, std::vector<Matrix3>& rotations) const;
@@ -80,6 +91,7 @@ private:
     // during the solver's life, so these are summed once and not at every time step.
     std::vector<double> weightSums_, weightedLengths_;
     std::vector<double> projected_, nodeNorms_, magnitudes_;  // work arrays
+    TransverseGradientPenalty transverse_;
 };
 
 } // namespace rbm::motion
