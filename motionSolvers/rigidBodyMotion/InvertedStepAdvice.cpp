@@ -41,8 +41,9 @@ std::string invertedStepAdvice(const RigidBodyMotionOptions& options, int dimens
         effectiveScaling(options, dimension).stiffness != 0.0) {
         text << "In rigidBodyMotionSolverCoeffs, what can help this motion: scaling similar (the motion squeezes cells to "
              << cellSizeRatio << " of their size and less, a body closing a gap; with it each neighbourhood may shrink "
-                "as freely as it turns; OpenFOAM's movingCone runs to the end with weighting uniform as well and one "
-                "stiffening exponent towards every wall, stiffening power 0.8 inverseDistance (its walls)).";
+                "as freely as it turns); where the body translates, transverseStiffness 100 (the columns across the "
+                "motion move as one and the gap closes evenly; `transverseStiffness auto` applies it by itself only "
+                "where every fixed wall faces the motion, as in OpenFOAM's movingCone).";
     } else if (cellSizeRatio < squeezeAdviceRatio) {
         text << "None of rbm's options will help: the motion squeezes cells to " << cellSizeRatio
              << " of their size and less (a body closing a gap; 1 % of the cells), and rbm moves every node's neighbourhood as close to ";

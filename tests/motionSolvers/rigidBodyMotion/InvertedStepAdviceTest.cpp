@@ -39,6 +39,8 @@ TEST(InvertedStepAdvice, WithTheDefaultsSaysWhatTheMotionAsksSqueezeBeforeRotati
             << squeeze;
         EXPECT_EQ(contains(squeeze, "None of rbm's options will help: the motion squeezes cells to 0.022"), dimension == 3)
             << squeeze;
+        // 2D: the translation's penalty too, for a gap that its automatic rule leaves out.
+        EXPECT_EQ(contains(squeeze, "where the body translates, transverseStiffness 100"), dimension == 2) << squeeze;
         const std::string rotation = invertedStepAdvice(defaults, dimension, 30.0, 0.9);
         EXPECT_TRUE(contains(rotation, "the boundary turns by 30 degrees")) << rotation;
         const std::string other = invertedStepAdvice(defaults, dimension, 0.5, 0.9);
