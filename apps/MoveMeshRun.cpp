@@ -290,7 +290,7 @@ MoveMeshRun::MoveMeshRun(MoveMeshOptions options, std::ostream& out, std::ostrea
     if (io::existsMaybeCompressed(startField)) {
         const fs::path startFieldPath = io::resolveMaybeCompressed(startField);
         if (fs::equivalent(startFieldPath, boundaryFieldPath, error)) {
-            initial = boundaryField_.internalField;
+            initial = std::move(boundaryField_.internalField);
         } else {
             initial = io::readPointVectorField(startFieldPath, mesh_).internalField;
         }
@@ -299,6 +299,8 @@ MoveMeshRun::MoveMeshRun(MoveMeshOptions options, std::ostream& out, std::ostrea
         }
     }
     solver_->pointDisplacement() = std::move(initial);
+    // The boundary field's own values are read once, here: the output writes the solver's.
+    std::vector<Vector3>().swap(boundaryField_.internalField);
 
     if (options_.writeVtk) {
         cells_->vtkCells = io::vtkCellsOf(mesh_, assessor_->topology());
@@ -639,6 +641,7 @@ bool MoveMeshRun::runStep(int step, std::vector<Vector3>& points, io::JsonLinesW
         name = timeNameOf(time);
         solver_->updateBoundaryConditions(time);
         checkBoundaryDisplacementIsFinite(time);
+        std::vector<Vector3>().swap(points);   // the last step's: not held through the solve
         const motion::MotionSolveReport solve = solver_->solve();
         points = solver_->curPoints();
         for (const std::string& warning : solve.warnings)

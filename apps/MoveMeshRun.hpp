@@ -194,7 +194,7 @@ private:
     PolyMesh mesh_;
     io::Dictionary dynamicMeshDict_;
     std::string memoryNote_;  // printed in the header when the solver went leaner to fit in memory
-    io::PointVectorField boundaryField_;
+    io::PointVectorField boundaryField_;   // its internalField released after the start (not used)
     std::unique_ptr<motion::MotionSolver> solver_;
     std::vector<std::uint8_t> nodeClasses_;   // per point: 0 free, 1 sliding, 2 prescribed
     std::vector<std::uint8_t> prescribedPatches_;   // per patch: 1 when its condition is prescribed

@@ -11,10 +11,12 @@
 // process); see docs/rbmMoveMesh.md.
 
 #include "MoveMeshRun.hpp"
+#include "ReturnFreedMemory.hpp"
 
 #include <iostream>
 
 int main(int argc, char** argv)
 {
+    rbm::useOneHeapForAllThreads();   // before any thread starts
     return rbm::app::moveMeshMain(argc, argv, std::cout, std::cerr);
 }

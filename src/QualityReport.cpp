@@ -44,8 +44,19 @@ const MeshGeometry& QualityEvaluator::geometryAt(std::span<const Vector3> points
     return geometry_;
 }
 
+const MeshTopology& QualityEvaluator::topology() const
+{
+    if (topologyReleased_) {
+        topology_ = buildMeshTopology(mesh_);
+        topologyReleased_ = false;
+    }
+    return topology_;
+}
+
 void QualityEvaluator::releaseWorkspaces()
 {
+    topology_ = MeshTopology{};
+    topologyReleased_ = true;
     geometry_ = MeshGeometry{};
     geometryStale_ = true;
     checkMeshWorkspace_ = CheckMeshWorkspace{};
@@ -75,7 +86,7 @@ QualityReport QualityEvaluator::evaluate(std::span<const Vector3> points)
     report.faceZoneCount = static_cast<Label>(mesh_.faceZones.size());
     report.cellZoneCount = static_cast<Label>(mesh_.cellZones.size());
     if (!haveCellShapeCounts_) {
-        const auto counts = countCellShapes(mesh_, topology_);
+        const auto counts = countCellShapes(mesh_, topology());
         for (std::size_t i = 0; i < cellShapeCounts_.size() && i < counts.size(); ++i) cellShapeCounts_[i] = counts[i];
         haveCellShapeCounts_ = true;
     }
@@ -216,7 +227,7 @@ StepQuality QualityEvaluator::evaluateStep(std::span<const Vector3> points)
         summarisePlanarCells(twoD_->planar, cellValues_, cellInverted_, quality);
         return quality;
     }
-    evaluatePyramidCells(mesh_, topology_, geometry_, cellValues_, cellInverted_);
+    evaluatePyramidCells(mesh_, topology(), geometry_, cellValues_, cellInverted_);
     summarisePyramidCells(cellValues_, cellInverted_, quality);
     return quality;
 }

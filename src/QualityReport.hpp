@@ -92,7 +92,8 @@ public:
     // still an extrusion: about a fifth). geometryAt(points) is then that of `points`.
     StepQuality evaluateStep(std::span<const Vector3> points);
 
-    const MeshTopology& topology() const { return topology_; }
+    // Built again here after releaseWorkspaces() (about 0.13 s at 10⁶ hexahedra).
+    const MeshTopology& topology() const;
     // The extracted 2D mesh of a pseudo-3D mesh (nullptr otherwise, or when the extraction failed).
     const PseudoTwoDMesh* twoDMesh() const { return twoD_; }
 
@@ -109,14 +110,17 @@ public:
     const CheckMeshExtremesWorkspace& stepFaceMeasures() const { return extremesWorkspace_; }
     bool isTwoD() const { return twoD_ != nullptr; }
     // Gives back the per-face and per-cell work arrays (the geometry among them; the next
-    // geometryAt() computes it again). Between the time steps of a run they would sit beside
-    // the motion solver's own arrays: 230 MB at 10⁶ hexahedra, which would raise the peak of
-    // a large 3D run.
+    // geometryAt() computes it again) and the topology (topology() builds it again). Between
+    // the time steps of a run they would sit beside the motion solver's own arrays: 230 MB and
+    // 100 MB at 10⁶ hexahedra, which would raise the peak of a large 3D run. A pseudo-2D mesh's
+    // step evaluation does not read the topology.
     void releaseWorkspaces();
 
 private:
     const PolyMesh& mesh_;
-    MeshTopology topology_;
+    // Rebuilt on demand once released (topology()): a cache of the mesh's, hence mutable.
+    mutable MeshTopology topology_;
+    mutable bool topologyReleased_ = false;
     std::array<Label, 5> cellShapeCounts_{};   // counted at the first evaluate() (evaluateStep needs none)
     bool haveCellShapeCounts_ = false;
     PseudoTwoDKind pseudoTwoD_ = PseudoTwoDKind::None;

@@ -56,18 +56,13 @@ ReducedHessian3D::ReducedHessian3D(const RbmProblem& problem) : problem_(problem
     if (problem.dimension() != 3) throw std::invalid_argument("ReducedHessian3D: a 3D problem is needed");
     const std::size_t m = static_cast<std::size_t>(problem.unknownNodeCount());
     const std::size_t n = static_cast<std::size_t>(problem.nodeCount());
-    inverse_.assign(m, {});
-    rotatedSum_.assign(m, Vector3{});
     diagonal_.assign(m, 0.0);
-    ownTerm_.assign(m, Vector3{});
     position_.assign(n, AlignedDouble4{});
     for (std::size_t i = 0; i < n; ++i) {
         const Vector3& point = problem.referencePoints()[i];
         position_[i].value = Double4{point.x, point.y, point.z, 0.0};
     }
-    nodeVector_.assign(n, AlignedDouble4{});
-    nodeMap_.assign(3 * n, AlignedDouble4{});
-    projected_.reserve(3 * m);
+    allocateSolveData();
     const CellNeighbourGraph& graph = problem.graph();
     const std::vector<int>& nodes = problem.unknownNodes();
     for (std::size_t a = 0; a < m; ++a) {
@@ -79,8 +74,35 @@ ReducedHessian3D::ReducedHessian3D(const RbmProblem& problem) : problem_(problem
     }
 }
 
+void ReducedHessian3D::allocateSolveData()
+{
+    const std::size_t m = static_cast<std::size_t>(problem_.unknownNodeCount());
+    const std::size_t n = static_cast<std::size_t>(problem_.nodeCount());
+    inverse_.assign(m, {});
+    rotatedSum_.assign(m, Vector3{});
+    ownTerm_.assign(m, Vector3{});
+    // Zero at the prescribed nodes, which prepare() and apply() never write.
+    nodeVector_.assign(n, AlignedDouble4{});
+    nodeMap_.assign(3 * n, AlignedDouble4{});
+    projected_.reserve(3 * m);
+}
+
+void ReducedHessian3D::release()
+{
+    std::vector<std::array<double, 6>>().swap(inverse_);
+    std::vector<Vector3>().swap(rotatedSum_);
+    std::vector<Vector3>().swap(ownTerm_);
+    std::vector<AlignedDouble4>().swap(nodeVector_);
+    std::vector<AlignedDouble4>().swap(nodeMap_);
+    std::vector<double>().swap(projected_);
+    rotations_ = {};
+}
+
 void ReducedHessian3D::prepare(std::span<const Vector3> displacement, std::span<const Matrix3> rotations)
 {
+    if (inverse_.size() != static_cast<std::size_t>(problem_.unknownNodeCount()) ||
+        nodeMap_.size() != 3 * static_cast<std::size_t>(problem_.nodeCount()))
+        allocateSolveData();
     const CellNeighbourGraph& graph = problem_.graph();
     const std::vector<Vector3>& x = problem_.referencePoints();
     const std::vector<int>& nodes = problem_.unknownNodes();
@@ -208,6 +230,8 @@ void secondPassBaseline(const PassData& data, int begin, int end) { secondPass(d
 
 void ReducedHessian3D::apply(std::span<const double> v, std::span<double> y)
 {
+    if (inverse_.empty() && problem_.unknownNodeCount() > 0)
+        throw std::logic_error("ReducedHessian3D::apply: prepare() first (the data was released)");
     const CellNeighbourGraph& graph = problem_.graph();
     const std::vector<int>& nodes = problem_.unknownNodes();
     const int m = problem_.unknownNodeCount();

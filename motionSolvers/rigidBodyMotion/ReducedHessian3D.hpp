@@ -50,6 +50,10 @@ public:
     void prepare(std::span<const Vector3> displacement, std::span<const Matrix3> rotations);
     // y = P S P v (compact vectors, 3 per unknown node).
     void apply(std::span<const double> v, std::span<double> y);
+    // Between solves: frees what prepare() computes and apply() works in (about 250 bytes a node,
+    // which the caller's quality check and output need more); the next prepare() allocates it
+    // again. The reference positions and the diagonal stay.
+    void release();
 
     // Bytes held (for MemoryEstimate and its test): per unknown node and per node.
     static constexpr double bytesPerUnknownNode = (6 + 3 + 1 + 3 + 3) * 8.0;
@@ -64,6 +68,8 @@ public:
     };
 
 private:
+    void allocateSolveData();  // the arrays release() frees, zeroed
+
     const RbmProblem& problem_;
     std::span<const Matrix3> rotations_;           // per node: R_i, prepare's (not owned)
     std::vector<std::array<double, 6>> inverse_;   // per unknown node: H_δδ⁻¹ (symmetric: 00 01 02 11 12 22)

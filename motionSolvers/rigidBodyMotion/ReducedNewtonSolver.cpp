@@ -67,10 +67,13 @@ ReducedNewtonSolver::~ReducedNewtonSolver() = default;
 bool ReducedNewtonSolver::displacementTestPasses(const std::vector<double>& gradient, const char* where,
                                                  bool& laplacianFailed)
 {
-    negativeGradient_.resize(gradient.size());
     estimatedCorrection_.resize(gradient.size());
-    for (std::size_t k = 0; k < gradient.size(); ++k) negativeGradient_[k] = -gradient[k];
-    laplacianFailed = !preconditioner_.apply(negativeGradient_, estimatedCorrection_);
+    {
+        // Local: not alive through the CG that may follow (the solve's peak).
+        std::vector<double> negativeGradient(gradient.size());
+        for (std::size_t k = 0; k < gradient.size(); ++k) negativeGradient[k] = -gradient[k];
+        laplacianFailed = !preconditioner_.apply(negativeGradient, estimatedCorrection_);
+    }
     if (laplacianFailed) return false;
     estimatedDisplacement_ = relativeDisplacement_.largest(estimatedCorrection_);
     if (monitor_)
@@ -143,11 +146,12 @@ RbmResult ReducedNewtonSolver::solve(std::span<const Vector3> prescribedDisplace
         }
         ++result.iterations;
     }
-    warmStart_.record(start, point.displacement, result.converged, initialGuess != nullptr, unknowns);
-    // The work arrays go between solves: the caller's quality check and output come next.
+    // The work arrays go between solves (the caller's quality check and output come next), and
+    // before record(), whose copies of the result would otherwise add to them at the solve's peak.
     newtonCg_.releaseWork();
-    std::vector<double>().swap(negativeGradient_);
+    reducedEnergy_.releaseHessian();
     std::vector<double>().swap(estimatedCorrection_);
+    warmStart_.record(start, point.displacement, result.converged, initialGuess != nullptr, unknowns);
     return finishedResult(std::move(point), std::move(result), reason);
 }
 

@@ -125,7 +125,7 @@ private:
     NewtonCg newtonCg_;
     double absoluteTolerance_ = 0.0;
     bool monitor_ = false;
-    std::vector<double> negativeGradient_, estimatedCorrection_;  // the displacement test's
+    std::vector<double> estimatedCorrection_;  // the displacement test's K⁻¹(−∇Ẽ)
     double estimatedDisplacement_ = 0.0;
 };
 

@@ -175,8 +175,14 @@ TEST(StepQuality, ReleasedWorkspacesGiveTheSameFiguresAndGeometryAgain)
     const rbm::MeshGeometry& again = evaluator.geometryAt(moved);  // computed again, nothing evaluated in between
     EXPECT_EQ(again.faceCentres, geometry.faceCentres);
     EXPECT_EQ(again.cellVolumes, geometry.cellVolumes);
+    // The topology goes too, and comes back as the mesh's own.
+    const rbm::MeshTopology built = rbm::buildMeshTopology(box);
     evaluator.releaseWorkspaces();
     const rbm::StepQuality after = evaluator.evaluateStep(moved);
+    EXPECT_EQ(evaluator.topology().cellFaces, built.cellFaces);
+    EXPECT_EQ(evaluator.topology().cellPoints, built.cellPoints);
+    EXPECT_EQ(evaluator.topology().pointCells, built.pointCells);
+    EXPECT_EQ(evaluator.topology().cellCount, 12);
     EXPECT_EQ(after.worstCellQuality, before.worstCellQuality);
     EXPECT_EQ(after.maxNonOrthogonality, before.maxNonOrthogonality);
     EXPECT_EQ(after.maxSkewness, before.maxSkewness);

@@ -60,12 +60,12 @@ NewtonCg::Outcome NewtonCg::step(ReducedIterate& point, const CompactUnknowns& u
     std::vector<double>& g = point.gradient;
     std::vector<double>& step = step_;
     step.resize(g.size());
-    trialGradient_.resize(g.size());
     energy_.prepareHessian(point.displacement, point.rotations);
     const int linearIterationsBefore = linearIterations;
     bool negativeCurvature = false;
-    if (!direction(g, forcing_, firstPreconditioned, step, linearIterations, negativeCurvature))
-        return Outcome::linearSolveFailed;
+    const bool directionFound = direction(g, forcing_, firstPreconditioned, step, linearIterations, negativeCurvature);
+    releaseLinearWork();
+    if (!directionFound) return Outcome::linearSolveFailed;
     double slope = problem_.compactDot(g, step);
     if (!(slope < 0.0)) {
         // Not a descent direction (rounding near a negative curvature): a local/global step.
@@ -75,6 +75,7 @@ NewtonCg::Outcome NewtonCg::step(ReducedIterate& point, const CompactUnknowns& u
         negativeCurvature = true;
     }
     if (negativeCurvature) ++localGlobalSteps_;
+    trialGradient_.resize(g.size());
 
     // Where Ẽ no longer resolves the decrease, a step that lowers ‖P∇Ẽ‖ is taken.
     bool gradientKnown = false;  // trialGradient_ is the last trial point's
@@ -107,6 +108,7 @@ NewtonCg::Outcome NewtonCg::step(ReducedIterate& point, const CompactUnknowns& u
     point.energy = search.energy;
     previousGradientNorm_ = point.gradientNorm;
     point.gradientNorm = trialGradientNorm;
+    releaseTrial();
     return Outcome::stepTaken;
 }
 
@@ -115,8 +117,7 @@ bool NewtonCg::direction(std::span<const double> g, double forcing, const std::v
 {
     // Flexible (Polak–Ribière) preconditioned CG, so that an iterative K⁻¹ is allowed too.
     const std::size_t size = g.size();
-    // Work vectors kept between the calls of one solve (no allocation and page faults per Newton
-    // step; releaseWork frees them at its end).
+    // Work vectors of this call (releaseLinearWork frees them once the step is known).
     std::vector<double>& r = cgResidual_;
     std::vector<double>& z = cgPreconditioned_;
     std::vector<double>& previousZ = cgPreviousPreconditioned_;
@@ -165,9 +166,20 @@ bool NewtonCg::direction(std::span<const double> g, double forcing, const std::v
 
 void NewtonCg::releaseWork()
 {
-    for (std::vector<double>* work : {&step_, &trialGradient_, &cgResidual_, &cgPreconditioned_, &cgPreviousPreconditioned_,
-                                      &cgDirection_, &cgProduct_})
+    std::vector<double>().swap(step_);
+    releaseLinearWork();
+    releaseTrial();
+}
+
+void NewtonCg::releaseLinearWork()
+{
+    for (std::vector<double>* work : {&cgResidual_, &cgPreconditioned_, &cgPreviousPreconditioned_, &cgDirection_, &cgProduct_})
         std::vector<double>().swap(*work);
+}
+
+void NewtonCg::releaseTrial()
+{
+    std::vector<double>().swap(trialGradient_);
     std::vector<Vector3>().swap(trial_);
     std::vector<Matrix3>().swap(trialRotations_);
 }

@@ -125,6 +125,12 @@ void ReducedEnergy::prepareHessian(std::span<const Vector3> displacement, std::s
     hessian3D_->prepare(displacement, rotations);
 }
 
+void ReducedEnergy::releaseHessian()
+{
+    if (hessian3D_) hessian3D_->release();
+    std::vector<double>().swap(projected_);
+}
+
 void ReducedEnergy::applyHessian(std::span<const double> v, std::span<double> y)
 {
     const int dim = problem_.dimension();
@@ -155,19 +161,19 @@ double ReducedEnergy::gradientRoundoffNorm(std::span<const Vector3> displacement
     const std::vector<int>& nodes = problem_.unknownNodes();
     const CellNeighbourGraph& graph = problem_.graph();
     // |u| once per node, then per unknown node |u_i| Σ_j w + Σ_j w |u_j| + Σ_j w |d|.
-    nodeNorms_.resize(static_cast<std::size_t>(n));
-    magnitudes_.resize(static_cast<std::size_t>(m));
-    for (int node = 0; node < n; ++node) nodeNorms_[node] = norm(displacement[node]);
+    // Local: not alive through the CG that follows (the solve's peak).
+    std::vector<double> nodeNorms(static_cast<std::size_t>(n)), magnitudes(static_cast<std::size_t>(m));
+    for (int node = 0; node < n; ++node) nodeNorms[node] = norm(displacement[node]);
 #pragma omp parallel for schedule(static) if (worthThreading(graph.neighbours.size()))
     for (int a = 0; a < m; ++a) {
         const int i = nodes[a];
         double neighbourNorms = 0.0;
         for (int e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e)
-            neighbourNorms += problem_.edgeWeights()[e] * nodeNorms_[graph.neighbours[e]];
-        magnitudes_[a] = nodeNorms_[i] * weightSums_[a] + neighbourNorms + weightedLengths_[a];
+            neighbourNorms += problem_.edgeWeights()[e] * nodeNorms[graph.neighbours[e]];
+        magnitudes[a] = nodeNorms[i] * weightSums_[a] + neighbourNorms + weightedLengths_[a];
     }
     double sum = 0.0;
-    for (double magnitude : magnitudes_) sum += dim * magnitude * magnitude;
+    for (double magnitude : magnitudes) sum += dim * magnitude * magnitude;
     return std::numeric_limits<double>::epsilon() * std::sqrt(sumOverRanks(sum));
 }
 

@@ -32,6 +32,13 @@ WarmStartOptions withPetscOptions(WarmStartOptions options, const RbmProblem& pr
     return options;
 }
 
+// A kept result's displacement of `node`; an empty result is the reference mesh (no
+// displacement), kept without its zeros (WarmStart::record).
+Vector3 keptDisplacement(const std::vector<Vector3>& result, int node)
+{
+    return result.empty() ? Vector3{} : result[node];
+}
+
 } // namespace
 
 WarmStart::WarmStart(const RbmProblem& problem, ReducedEnergy& energy, LaplacianPreconditioner& preconditioner,
@@ -103,7 +110,7 @@ void WarmStart::extrapolateAlongHistory(std::span<const Vector3> prescribedDispl
     double numerator = 0.0, denominator = 0.0;
     for (int node = 0; node < problem_.ownedNodeCount(); ++node) {  // a part: its owned nodes, summed over the ranks
         if (problem_.isUnknown(node)) continue;
-        const Vector3 step = flat(last[node] - previous[node]);
+        const Vector3 step = flat(last[node] - keptDisplacement(previous, node));
         numerator += dot(flat(prescribedDisplacement[node]) - flat(last[node]), step);
         denominator += normSquared(step);
     }
@@ -123,7 +130,7 @@ void WarmStart::extrapolateAlongHistory(std::span<const Vector3> prescribedDispl
     for (std::size_t j = 0; j < coefficients.size(); ++j) {
         if (coefficients[j] == 0.0) continue;
         const std::vector<Vector3>& older = solutionHistory_[j + 1];
-        for (int node = 0; node < n; ++node) base[node] += coefficients[j] * (last[node] - older[node]);
+        for (int node = 0; node < n; ++node) base[node] += coefficients[j] * (last[node] - keptDisplacement(older, node));
     }
 }
 
@@ -310,7 +317,8 @@ BoundaryDifferences boundaryDifferences(const RbmProblem& problem, std::span<con
         if (problem.isUnknown(node)) continue;
         for (int q = 0; q < dim; ++q) {
             d.target.push_back(prescribed[node][q] - history[0][node][q]);
-            for (std::size_t j = 1; j < history.size(); ++j) d.columns[j - 1].push_back(history[0][node][q] - history[j][node][q]);
+            for (std::size_t j = 1; j < history.size(); ++j)
+                d.columns[j - 1].push_back(history[0][node][q] - keptDisplacement(history[j], node)[q]);
         }
     }
     return d;
@@ -470,7 +478,6 @@ void WarmStart::releaseTrial()
 void WarmStart::record(const Start& start, const std::vector<Vector3>& u, bool converged, bool warm,
                        const CompactUnknowns& unknowns)
 {
-    const int n = problem_.nodeCount();
     const std::size_t size = start.predicted.size();
     const bool chained = start.chained;
     const bool correctionsFit = chained == correctionsFromChain_;
@@ -505,7 +512,8 @@ void WarmStart::record(const Start& start, const std::vector<Vector3>& u, bool c
     // (u₁ + α u₁, its boundary mismatch moved in harmonically) instead of the turned start from
     // the guess; its Newton correction then is a chain's, and the third step takes the subspace
     // step along it: the series' third and fourth steps start much closer to their minima.
-    if (!warm && converged) solutionHistory_.emplace_back(static_cast<std::size_t>(n), Vector3{});
+    // (Kept as an empty result: its zeros would be 24 bytes a node through the next solves.)
+    if (!warm && converged) solutionHistory_.emplace_back();
     if (solutionHistory_.size() > keptResults) solutionHistory_.resize(keptResults);
 }
 

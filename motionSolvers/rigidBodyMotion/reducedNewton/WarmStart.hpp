@@ -118,7 +118,8 @@ private:
     WarmStartOptions options_;  // with PETSc's options read (before harmonicBasis_, which takes one)
     HarmonicChangeBasis harmonicBasis_;
     // The last results (node displacements, newest first), for the predictor of warm starts:
-    // the secant from the first two, a fit on the boundary over all at a turning point.
+    // the secant from the first two, a fit on the boundary over all at a turning point. An empty
+    // one is the reference mesh (no displacement: the result before a cold solve).
     static constexpr std::size_t keptResults = 4;
     std::vector<std::vector<Vector3>> solutionHistory_;
     // The last Newton corrections (result − predictor, compact), newest first.

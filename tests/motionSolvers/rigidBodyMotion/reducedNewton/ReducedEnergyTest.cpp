@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <stdexcept>
 #include <vector>
 
 namespace rbm::motion {
@@ -280,6 +281,36 @@ TEST(ReducedEnergy, In3DTheHessianProductIsTheEdgeFormulaWithAndWithoutAvx)
         }
         EXPECT_GT(largest, 1e-2);
         EXPECT_LT(largestError, 1e-12 * largest);
+    }
+}
+
+TEST(ReducedEnergy, In3DTheReleasedHessianIsPreparedAgainToTheLastBit)
+{
+    // The solver frees the Hessian's per-node data between solves (releaseHessian): the next
+    // prepareHessian computes it again, the same bits, with mirror nodes as well; a product
+    // without it is refused, not computed from freed data.
+    for (bool mirror : {false, true}) {
+        const GridCase c = gridCase(3, 5, mirror, 11);
+        const RbmProblem& problem = *c.problem;
+        const std::vector<Vector3> prescribed = largeTopMotion(c);
+        std::vector<Vector3> displacement = prescribed;
+        for (int node : problem.unknownNodes()) displacement[node] = 0.4 * prescribed[node];
+        std::vector<double> direction(3 * static_cast<std::size_t>(problem.unknownNodeCount()));
+        for (std::size_t k = 0; k < direction.size(); ++k) direction[k] = std::sin(0.7 * static_cast<double>(k));
+        problem.projectSliding(direction, 3);
+        ReducedEnergy energy(problem);
+        const std::vector<double> before = hessianProduct(energy, displacement, direction);
+        energy.releaseHessian();
+        std::vector<double> y(direction.size());
+        EXPECT_THROW(energy.applyHessian(direction, y), std::logic_error);
+        const std::vector<double> after = hessianProduct(energy, displacement, direction);
+        ASSERT_EQ(after.size(), before.size());
+        double largest = 0.0;
+        for (std::size_t k = 0; k < after.size(); ++k) {
+            ASSERT_EQ(after[k], before[k]) << k;
+            largest = std::max(largest, std::abs(after[k]));
+        }
+        EXPECT_GT(largest, 1e-2);
     }
 }
 
