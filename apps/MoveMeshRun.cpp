@@ -558,8 +558,9 @@ void MoveMeshRun::writeVtk(double time, const std::string& timeName, const std::
             inverted.values[static_cast<std::size_t>(c)] = twoD.planar.signedArea(c, nodes) <= 0.0 ? 1.0 : 0.0;
         }
     } else {
+        const MeshTopology& topology = assessor_->cellFaceTopology();
         for (std::size_t c = 0; c < cellCount; ++c) {
-            const motion::PyramidQuality pyramids = motion::cellPyramidQuality(mesh_, assessor_->topology(), geometry, static_cast<Label>(c));
+            const motion::PyramidQuality pyramids = motion::cellPyramidQuality(mesh_, topology, geometry, static_cast<Label>(c));
             quality.values[c] = pyramids.ratio;
             inverted.values[c] = pyramids.inverted ? 1.0 : 0.0;
         }

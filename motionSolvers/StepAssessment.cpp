@@ -68,7 +68,7 @@ double StepAssessor::worstCellQuality(const QualityReport& report) const
     double worst = std::numeric_limits<double>::quiet_NaN();
     const Label cellCount = static_cast<Label>(geometry.cellVolumes.size());
     for (Label c = 0; c < cellCount; ++c) {
-        const double ratio = cellPyramidQuality(mesh_, evaluator_.topology(), geometry, c).ratio;
+        const double ratio = cellPyramidQuality(mesh_, evaluator_.cellFaceTopology(), geometry, c).ratio;
         worst = (c == 0) ? ratio : std::min(worst, ratio);
     }
     return worst;

@@ -61,6 +61,8 @@ public:
     // The geometry of `points`, the points of the last evaluate() or evaluateStep().
     const MeshGeometry& geometryAt(std::span<const Vector3> points) { return evaluator_.geometryAt(points); }
     const MeshTopology& topology() const { return evaluator_.topology(); }
+    // At least each cell's faces (QualityEvaluator::cellFaceTopology): what cellPyramidQuality reads.
+    const MeshTopology& cellFaceTopology() const { return evaluator_.cellFaceTopology(); }
     // The extracted 2D mesh of a pseudo-3D mesh, nullptr otherwise (QualityEvaluator::twoDMesh).
     const PseudoTwoDMesh* twoDMesh() const { return evaluator_.twoDMesh(); }
     // The log line's worst quality of the report evaluate() returned last.

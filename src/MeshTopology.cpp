@@ -74,7 +74,7 @@ Vector3 areaVector(const PolyMesh& mesh, std::span<const Label> face)
 
 } // namespace
 
-MeshTopology buildMeshTopology(const PolyMesh& mesh)
+MeshTopology buildCellFaceTopology(const PolyMesh& mesh)
 {
     requireIndexableMesh(mesh);
     MeshTopology topology;
@@ -95,6 +95,13 @@ MeshTopology buildMeshTopology(const PolyMesh& mesh)
         topology.cellFaces[cursor[mesh.owner[f]]++] = f;
         if (f < internalFaceCount) topology.cellFaces[cursor[mesh.neighbour[f]]++] = f;
     }
+    return topology;
+}
+
+MeshTopology buildMeshTopology(const PolyMesh& mesh)
+{
+    MeshTopology topology = buildCellFaceTopology(mesh);
+    const Label cellCount = topology.cellCount;
 
     // cell → unique points: a per-point stamp of the last cell that listed it removes
     // duplicates without a set; every face is visited by its owner and its neighbour.

@@ -59,6 +59,10 @@ struct MeshTopology {
 // (file "") when a face, owner or neighbour label is out of range, since nothing
 // downstream could work on such a mesh.
 MeshTopology buildMeshTopology(const PolyMesh& mesh);
+// Only the first part of it: the counts and each cell's faces (cellFaceOffsets, cellFaces); the
+// point lists stay empty. A few passes over the faces, about a fifth of the whole topology's
+// time: what a per-step quality check of a 3D mesh reads (QualityEvaluator).
+MeshTopology buildCellFaceTopology(const PolyMesh& mesh);
 
 // Appends the points of face `face` oriented outward from `cell` (as stored when `cell`
 // owns the face, reversed when it is the neighbour) to `out`.

@@ -46,9 +46,18 @@ const MeshGeometry& QualityEvaluator::geometryAt(std::span<const Vector3> points
 
 const MeshTopology& QualityEvaluator::topology() const
 {
-    if (topologyReleased_) {
+    if (topologyHeld_ != TopologyHeld::whole) {
         topology_ = buildMeshTopology(mesh_);
-        topologyReleased_ = false;
+        topologyHeld_ = TopologyHeld::whole;
+    }
+    return topology_;
+}
+
+const MeshTopology& QualityEvaluator::cellFaceTopology() const
+{
+    if (topologyHeld_ == TopologyHeld::none) {
+        topology_ = buildCellFaceTopology(mesh_);
+        topologyHeld_ = TopologyHeld::cellFacesOnly;
     }
     return topology_;
 }
@@ -56,7 +65,7 @@ const MeshTopology& QualityEvaluator::topology() const
 void QualityEvaluator::releaseWorkspaces()
 {
     topology_ = MeshTopology{};
-    topologyReleased_ = true;
+    topologyHeld_ = TopologyHeld::none;
     geometry_ = MeshGeometry{};
     geometryStale_ = true;
     checkMeshWorkspace_ = CheckMeshWorkspace{};
@@ -227,7 +236,7 @@ StepQuality QualityEvaluator::evaluateStep(std::span<const Vector3> points)
         summarisePlanarCells(twoD_->planar, cellValues_, cellInverted_, quality);
         return quality;
     }
-    evaluatePyramidCells(mesh_, topology(), geometry_, cellValues_, cellInverted_);
+    evaluatePyramidCells(mesh_, cellFaceTopology(), geometry_, cellValues_, cellInverted_);
     summarisePyramidCells(cellValues_, cellInverted_, quality);
     return quality;
 }

@@ -175,10 +175,14 @@ TEST(StepQuality, ReleasedWorkspacesGiveTheSameFiguresAndGeometryAgain)
     const rbm::MeshGeometry& again = evaluator.geometryAt(moved);  // computed again, nothing evaluated in between
     EXPECT_EQ(again.faceCentres, geometry.faceCentres);
     EXPECT_EQ(again.cellVolumes, geometry.cellVolumes);
-    // The topology goes too, and comes back as the mesh's own.
+    // The topology goes too: a 3D step builds only the cells' faces again, the whole topology
+    // comes back when asked for, the mesh's own.
     const rbm::MeshTopology built = rbm::buildMeshTopology(box);
     evaluator.releaseWorkspaces();
     const rbm::StepQuality after = evaluator.evaluateStep(moved);
+    EXPECT_EQ(evaluator.cellFaceTopology().cellFaceOffsets, built.cellFaceOffsets);
+    EXPECT_EQ(evaluator.cellFaceTopology().cellFaces, built.cellFaces);
+    EXPECT_TRUE(evaluator.cellFaceTopology().cellPoints.empty());
     EXPECT_EQ(evaluator.topology().cellFaces, built.cellFaces);
     EXPECT_EQ(evaluator.topology().cellPoints, built.cellPoints);
     EXPECT_EQ(evaluator.topology().pointCells, built.pointCells);
