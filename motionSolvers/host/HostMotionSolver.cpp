@@ -61,6 +61,9 @@ HostStepReport HostMotionSolver::solve(int step, double time, const std::string&
         solveOnHostArray("HostMotionSolver", displacement, valueCount, u, [&solver] { return solver.solve(); });
     io::StepLogRecord record = stepRecord(step, time, timeName);
     const motion::StepVerdict verdict = impl_->assessor->assess(solve, u, solver.curPoints(), record);
+    // Not held through the flow solver's step and the next solve (as rbmMoveMesh between steps):
+    // the check's geometry and topology, about 330 MB at 10⁶ hexahedra.
+    impl_->assessor->releaseWorkspaces();
     record.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 
     return hostStepReport(record, verdict, solve.warnings, solver.invertedStepAdvice());
