@@ -62,7 +62,8 @@ ReducedHessian3D::ReducedHessian3D(const RbmProblem& problem) : problem_(problem
         const Vector3& point = problem.referencePoints()[i];
         position_[i].value = Double4{point.x, point.y, point.z, 0.0};
     }
-    allocateSolveData();
+    // The per-solve arrays come with the first prepare(): not alive through the set-up and the
+    // first solve's start.
     const CellNeighbourGraph& graph = problem.graph();
     const std::vector<int>& nodes = problem.unknownNodes();
     for (std::size_t a = 0; a < m; ++a) {

@@ -3,16 +3,23 @@
 namespace rbm::motion {
 
 CompactUnknowns::CompactUnknowns(const RbmProblem& problem, std::span<const Vector3> prescribedDisplacement)
-    : problem_(problem), offset_(static_cast<std::size_t>(problem.unknownNodeCount()) * problem.dimension())
+    : problem_(problem), size_(static_cast<std::size_t>(problem.unknownNodeCount()) * problem.dimension())
 {
+    if (!problem.hasSlidingNodes()) return;
+    offset_.resize(size_);
     problem.slidingOffset(prescribedDisplacement, offset_, problem.dimension());
+}
+
+std::vector<double> CompactUnknowns::slidingOffset() const
+{
+    return offset_.empty() ? std::vector<double>(size_, 0.0) : offset_;
 }
 
 std::vector<double> CompactUnknowns::compact(std::span<const Vector3> displacement) const
 {
     const int dim = problem_.dimension();
     const std::vector<int>& nodes = problem_.unknownNodes();
-    std::vector<double> values(offset_.size());
+    std::vector<double> values(size_);
     for (int a = 0; a < problem_.unknownNodeCount(); ++a)
         for (int q = 0; q < dim; ++q) values[static_cast<std::size_t>(a) * dim + q] = displacement[nodes[a]][q];
     return values;
@@ -22,13 +29,13 @@ void CompactUnknowns::set(std::vector<Vector3>& target, std::span<const double> 
 {
     const int dim = problem_.dimension();
     const std::vector<int>& nodes = problem_.unknownNodes();
-    std::vector<double> tangential(offset_.size());
-    for (std::size_t k = 0; k < offset_.size(); ++k) tangential[k] = values[k] - offset_[k];
+    std::vector<double> tangential(size_);
+    for (std::size_t k = 0; k < size_; ++k) tangential[k] = values[k] - offsetAt(k);
     problem_.projectSliding(tangential, dim);
     for (int a = 0; a < problem_.unknownNodeCount(); ++a) {
         Vector3 value{};
         for (int q = 0; q < dim; ++q)
-            value[q] = offset_[static_cast<std::size_t>(a) * dim + q] + tangential[static_cast<std::size_t>(a) * dim + q];
+            value[q] = offsetAt(static_cast<std::size_t>(a) * dim + q) + tangential[static_cast<std::size_t>(a) * dim + q];
         target[nodes[a]] = value;
     }
     problem_.updateGhostNodes(target);  // a part: the ghosts' values are their owners'
@@ -45,7 +52,7 @@ void CompactUnknowns::moveAlong(const std::vector<Vector3>& from, std::span<cons
         for (int q = 0; q < dim; ++q) value[q] += lambda * direction[static_cast<std::size_t>(a) * dim + q];
         if (problem_.kind(nodes[a]) == NodeKind::sliding) {
             Vector3 c{};
-            for (int q = 0; q < dim; ++q) c[q] = offset_[static_cast<std::size_t>(a) * dim + q];
+            for (int q = 0; q < dim; ++q) c[q] = offsetAt(static_cast<std::size_t>(a) * dim + q);
             value -= problem_.slidingNormalPart(nodes[a], value - c);
         }
     }

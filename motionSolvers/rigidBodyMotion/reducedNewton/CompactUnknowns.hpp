@@ -15,9 +15,9 @@ class CompactUnknowns {
 public:
     CompactUnknowns(const RbmProblem& problem, std::span<const Vector3> prescribedDisplacement);
 
-    std::size_t size() const { return offset_.size(); }
-    // The sliding offsets c n (compact; zero on free nodes).
-    const std::vector<double>& slidingOffset() const { return offset_; }
+    std::size_t size() const { return size_; }
+    // The sliding offsets c n (compact; zero on free nodes): a copy, for a start's arithmetic.
+    std::vector<double> slidingOffset() const;
     // The unknown nodes' displacements of a node array.
     std::vector<double> compact(std::span<const Vector3> displacement) const;
     // target's unknown nodes ← c n + P (values − c n): onto the sliding planes.
@@ -27,7 +27,12 @@ public:
                    std::vector<Vector3>& trial) const;
 
 private:
+    double offsetAt(std::size_t k) const { return offset_.empty() ? 0.0 : offset_[k]; }
+
     const RbmProblem& problem_;
+    std::size_t size_;
+    // Empty where the problem has no sliding node (every offset zero): 24 bytes a node less
+    // through the solve.
     std::vector<double> offset_;
 };
 

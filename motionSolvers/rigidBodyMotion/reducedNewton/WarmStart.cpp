@@ -259,7 +259,7 @@ WarmStart::Start WarmStart::start(std::span<const Vector3> prescribedDisplacemen
 {
     const int n = problem_.nodeCount();
     const int dim = problem_.dimension();
-    const std::vector<double>& offset = unknowns.slidingOffset();
+    const std::vector<double> offset = unknowns.slidingOffset();  // this start's only
     Start result;
     std::vector<Vector3>& u = result.point.displacement;
     u.assign(static_cast<std::size_t>(n), Vector3{});

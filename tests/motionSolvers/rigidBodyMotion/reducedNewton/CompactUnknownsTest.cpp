@@ -38,5 +38,27 @@ TEST(CompactUnknowns, SetAndCompactAreInverseOnThePlanesAndMovingKeepsSlidingNod
     }
 }
 
+TEST(CompactUnknowns, WithoutSlidingNodesTheOffsetsAreZeroAndTheValuesPassUnchanged)
+{
+    // No sliding node: no offset array is held (a solve's 24 bytes a node), slidingOffset() is
+    // zeros, and set() and compact() move the values across as they are, to the bit.
+    const GridCase c = gridCase(3, 4, false, 1);
+    std::vector<NodeConstraint> constraints = c.problem->constraints();
+    for (NodeConstraint& constraint : constraints)
+        if (constraint.kind == NodeKind::sliding) constraint = NodeConstraint{};
+    const RbmProblem problem(3, c.points, c.problem->graph(), constraints);
+    ASSERT_FALSE(problem.hasSlidingNodes());
+    const CompactUnknowns unknowns(problem, c.prescribed);
+    ASSERT_EQ(unknowns.size(), static_cast<std::size_t>(problem.unknownNodeCount()) * 3);
+    EXPECT_EQ(unknowns.slidingOffset(), std::vector<double>(unknowns.size(), 0.0));
+    std::vector<double> values(unknowns.size());
+    for (std::size_t k = 0; k < values.size(); ++k) values[k] = 0.01 * std::sin(1.0 + static_cast<double>(k));
+    std::vector<Vector3> u = c.prescribed;
+    unknowns.set(u, values);
+    EXPECT_EQ(unknowns.compact(u), values);
+    const std::vector<int>& nodes = problem.unknownNodes();
+    for (std::size_t a = 0; a < nodes.size(); ++a) EXPECT_EQ(u[nodes[a]].y, values[3 * a + 1]);
+}
+
 } // namespace
 } // namespace rbm::motion
