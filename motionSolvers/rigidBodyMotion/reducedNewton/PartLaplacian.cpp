@@ -1,5 +1,6 @@
 #include "PartLaplacian.hpp"
 
+#include "DistributedAggregation.hpp"
 #include "NodeExchange.hpp"
 
 #include <stdexcept>
@@ -32,12 +33,13 @@ PartLaplacian::PartLaplacian(const RbmProblem& problem, std::span<const double> 
         throw std::invalid_argument("PartLaplacian: one rank's part of a 3D problem is needed");
     if (laplacian.size() != static_cast<std::size_t>(problem.blockPattern().blockCount()))
         throw std::invalid_argument("PartLaplacian: one Laplacian entry per block of the pattern expected");
-    char cycle[16] = "gamg";
+    char cycle[16] = "aggregation";
     RBM_CHECK_PETSC(PetscOptionsGetString(nullptr, "rbm_reduced_", "-part_cycle", cycle, sizeof(cycle), nullptr));
     const std::string cycleName = cycle;
-    if (cycleName != "local" && cycleName != "gamg")
-        throw std::invalid_argument("-rbm_reduced_part_cycle " + cycleName + ": expected local or gamg");
+    if (cycleName != "local" && cycleName != "gamg" && cycleName != "aggregation")
+        throw std::invalid_argument("-rbm_reduced_part_cycle " + cycleName + ": expected aggregation, gamg or local");
     useLocalCycle_ = cycleName == "local";
+    useAggregationCycle_ = cycleName == "aggregation";
     relativeTolerance_ = relativeTolerance;
     innerSolve_ = solveToTolerance;
     // The matrix over the ranks only where something multiplies by it or cycles on it.
@@ -147,10 +149,18 @@ void PartLaplacian::setUpCycle()
     RBM_CHECK_PETSC(KSPCreate(communicator, cycle_.out()));
     RBM_CHECK_PETSC(KSPSetOperators(cycle_, stiffness_, stiffness_));
     RBM_CHECK_PETSC(KSPSetType(cycle_, KSPPREONLY));
-    PC preconditioner = nullptr;
-    RBM_CHECK_PETSC(KSPGetPC(cycle_, &preconditioner));
-    RBM_CHECK_PETSC(PCSetType(preconditioner, PCGAMG));
     cycleOptions_ = std::make_unique<InheritedOptions>("reduced_cycle");
+    // The prefix before the multigrid levels exist: PCMG gives them theirs when they are made.
+    RBM_CHECK_PETSC(KSPSetOptionsPrefix(cycle_, cycleOptions_->prefix().c_str()));
+    if (useAggregationCycle_) {
+        setUpAggregationCycle(cycle_, stiffness_);
+        // The coarse level's GAMG keeps the threshold below for the same reason.
+        cycleOptions_->addDefault("mg_coarse_pc_gamg_threshold", "0.01");
+    } else {
+        PC preconditioner = nullptr;
+        RBM_CHECK_PETSC(KSPGetPC(cycle_, &preconditioner));
+        RBM_CHECK_PETSC(PCSetType(preconditioner, PCGAMG));
+    }
     // GAMG drops couplings below 0.01 of the diagonal's scale from its coarsening graph: on a
     // boundary-layer mesh (weights 1/|d|², cells of aspect ratio up to thousands) the couplings
     // along the layers, which PETSc's default (0, keep all) aggregates with those across them, so

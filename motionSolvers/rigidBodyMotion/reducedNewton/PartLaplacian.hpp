@@ -17,13 +17,18 @@
 // is M itself, one cycle per component: the Newton CG is flexible. On the 2.2·10⁵-cell cube
 // on 2 ranks the step took 13 s with one cycle and 60 s solving to 10⁻⁴ (a loaded machine).
 //
-// C is by default one cycle of PETSc's GAMG of the whole K. With -rbm_reduced_part_cycle local
-// it is block Jacobi over the ranks: rbm's own smoothed-aggregation cycle (ThreeVectorMultigrid,
-// the serial 3D solver's) of the block of K that couples the rank's owned unknowns, the
-// couplings to other ranks left out, and no matrix over the ranks is assembled. Measured on the
-// 10⁶-cell cube turned 30° on 2 ranks (a loaded machine): GAMG 1 560 MiB per rank, 5 Newton
-// iterations, 65 s; local 1 386 MiB, 17 Newton iterations (the weaker cycle makes the truncated
-// Newton steps worse), 452 s.
+// C is by default one cycle of rbm's two-level smoothed aggregation over the ranks
+// (DistributedAggregation.hpp: aggregates of each rank's own rows, P smoothed with the whole K,
+// Chebyshev smoothing with K, one GAMG cycle of Pᵀ K P). With -rbm_reduced_part_cycle gamg it is
+// one cycle of PETSc's GAMG of the whole K, whose first coarsening (MIS-2 over the ranks) was
+// the peak of a rank's memory. Measured on the 10⁶-cell cube turned 30° on 2 ranks, one thread
+// each, in one run: GAMG 1 284 MiB on the larger rank, 5 Newton iterations, 20.5 s of CPU a rank;
+// aggregation 1 125 MiB, 6 Newton iterations, 19.1 s (docs/parallel.md). With
+// -rbm_reduced_part_cycle local it is block Jacobi over the ranks: rbm's own smoothed-aggregation
+// cycle (ThreeVectorMultigrid, the serial 3D solver's) of the block of K that couples the rank's
+// owned unknowns, the couplings to other ranks left out, and no matrix over the ranks is
+// assembled: on the same cube 1 386 MiB per rank, 17 Newton iterations (the weaker cycle makes the
+// truncated Newton steps worse), 452 s (a loaded machine).
 //
 // Unknown rows: each rank's owned unknown nodes in their part order, after the lower ranks'
 // (one contiguous range per rank); a ghost unknown's row comes from its owner through the
@@ -50,8 +55,8 @@ public:
     // is a 3D part. Collective.
     PartLaplacian(const RbmProblem& problem, std::span<const double> laplacian, double relativeTolerance,
                   bool solveToTolerance);
-    // Builds the cycle (GAMG's set-up) and the solver; collective, before the first apply. A
-    // separate step so that the caller's copy of K is gone first: GAMG's coarsening is the
+    // Builds the cycle (its multigrid set-up) and the solver; collective, before the first apply. A
+    // separate step so that the caller's copy of K is gone first: the cycle's set-up is a
     // transient peak of a rank's memory, and K's array (27 doubles a node) need not be alive in it.
     void setUp();
     ~PartLaplacian();
@@ -69,8 +74,9 @@ private:
     std::vector<PetscInt> unknownRows() const;
     void assemble(std::span<const double> laplacian);
     void slidingScales(std::span<const double> laplacian);
-    // The cycle C: PETSc's GAMG of the whole K (the default, -rbm_reduced_part_cycle gamg) or
-    // rbm's smoothed aggregation of the rank's own block of K (-rbm_reduced_part_cycle local).
+    // The cycle C: rbm's two-level aggregation over the ranks (the default, -rbm_reduced_part_cycle
+    // aggregation), PETSc's GAMG of the whole K (gamg) or rbm's smoothed aggregation of the rank's
+    // own block of K (local).
     void setUpLocalCycle(std::span<const double> laplacian);
     void setUpCycle();
     void setUpSolver();  // the CG on A (or preonly), with innerSolve_ and relativeTolerance_
@@ -91,12 +97,13 @@ private:
     bool setUp_ = false;
     PetscMat stiffness_;   // scalar K, owned unknown rows
     PetscMat operator_;    // A, a shell on 3 rows per owned unknown
-    PetscKsp cycle_;       // one multigrid cycle of K (preonly + GAMG), the default
+    PetscKsp cycle_;       // one multigrid cycle of K (preonly + the two-level aggregation or GAMG)
     // -rbm_reduced_part_cycle local: of K's block of the owned unknowns (its CSR, which the cycle reads).
     std::vector<int> localOffsets_, localColumns_;
     std::vector<double> localValues_;
     std::unique_ptr<ThreeVectorMultigrid> localCycle_;
     bool useLocalCycle_ = false;
+    bool useAggregationCycle_ = false;  // -rbm_reduced_part_cycle aggregation (DistributedAggregation.hpp)
     PetscKsp solver_;      // CG on A preconditioned by M (preonly: M alone)
     PetscVec componentIn_, componentOut_;  // one component, owned unknown rows
     mutable PetscVec projected_;            // P x (product) or P r (preconditioner)

@@ -1,5 +1,6 @@
 // K⁻¹ on one rank's part (PartLaplacian) against the whole problem's factorised K⁻¹
 // (LaplacianPreconditioner, direct): CTest runs this program under mpiexec with 1 to 4 ranks.
+// The cycle is the default (two-level aggregation) unless a test says otherwise.
 // The box's bottom and top are prescribed and its x-min side slides, so the solve is the
 // projected vector system; solved to a relative tolerance of 1e-10, every owned row must
 // equal the factorised solve's to 1e-8 of its largest entry.
@@ -13,6 +14,7 @@
 #include "PartLaplacian.hpp"
 #include "PartProblem.hpp"
 #include "ReducedLinearizedOperator.hpp"
+#include "ScopedPetscOptions.hpp"
 
 #include <gtest/gtest.h>
 
@@ -80,6 +82,30 @@ TEST(PartLaplacian, BlocksSolveAsTheWholeFactorisation) { checkPartAgainstWhole(
 TEST(PartLaplacian, ScatteredCellsSolveAsTheWholeFactorisation)
 {
     checkPartAgainstWhole(rbm::test::scatteredDecomposition);
+}
+
+TEST(PartLaplacian, WithGamgsCycleBlocksSolveAsTheWholeFactorisation)
+{
+    const ScopedPetscOptions gamg(std::vector<std::pair<std::string, std::string>>{{"-rbm_reduced_part_cycle", "gamg"}});
+    checkPartAgainstWhole(rbm::test::blockDecomposition(nx, ny));
+}
+
+TEST(PartLaplacian, AnUnknownCycleIsNamed)
+{
+    const ScopedPetscOptions wrong(std::vector<std::pair<std::string, std::string>>{{"-rbm_reduced_part_cycle", "jacobi"}});
+    const DecomposedBox box(nx, ny, nz, rbm::test::blockDecomposition(nx, ny));
+    const MeshPart part(PETSC_COMM_WORLD, box.localCells(rbm::test::worldRank()));
+    std::vector<NodeConstraint> constraints;
+    const std::vector<NodeConstraint> wholeConstraints = constraintsOf(box);
+    for (Label g : part.nodeGlobalIds()) constraints.push_back(wholeConstraints[g]);
+    const RbmProblem problem = partProblem(3, part, constraints);
+    try {
+        PartLaplacian laplacian(problem, coupledDisplacementLaplacian(problem), 1e-10, true);
+        FAIL() << "no error";
+    } catch (const std::invalid_argument& error) {
+        EXPECT_NE(std::string(error.what()).find("jacobi: expected aggregation, gamg or local"), std::string::npos)
+            << error.what();
+    }
 }
 
 TEST(PartLaplacian, NeedsAPart)
