@@ -2,6 +2,7 @@
 
 #include "DistributedAggregation.hpp"
 #include "NodeExchange.hpp"
+#include "SinglePrecisionPartLaplacian.hpp"
 
 #include <stdexcept>
 
@@ -154,6 +155,15 @@ void PartLaplacian::setUpCycle()
     RBM_CHECK_PETSC(KSPSetOptionsPrefix(cycle_, cycleOptions_->prefix().c_str()));
     if (useAggregationCycle_) {
         setUpAggregationCycle(cycle_, stiffness_);
+        // Where K is read only by the cycle, its fine level reads it in single precision
+        // (SinglePrecisionPartLaplacian.hpp), copied from PETSc's K after the set-up's products
+        // (whose transient is the peak of the set-up), and PETSc's K is released.
+        if (!innerSolve_) {
+            singlePrecisionLaplacian_ = std::make_unique<SinglePrecisionPartLaplacian>(problem_, stiffness_, unknownRows());
+            const Mat single = singlePrecisionLaplacian_->matrix();
+            RBM_CHECK_PETSC(KSPSetOperators(cycle_, single, single));
+            stiffness_.reset();
+        }
         // The coarse level's GAMG keeps the threshold below for the same reason.
         cycleOptions_->addDefault("mg_coarse_pc_gamg_threshold", "0.01");
     } else {

@@ -39,6 +39,7 @@
 
 #include "PetscSupport.hpp"
 #include "RbmProblem.hpp"
+#include "SinglePrecisionPartLaplacian.hpp"
 #include "ThreeVectorMultigrid.hpp"
 
 #include <memory>
@@ -95,7 +96,8 @@ private:
     bool innerSolve_ = true;
     double relativeTolerance_ = 0.0;
     bool setUp_ = false;
-    PetscMat stiffness_;   // scalar K, owned unknown rows
+    PetscMat stiffness_;   // scalar K, owned unknown rows (released after set-up where the single-precision K replaces it)
+    std::unique_ptr<SinglePrecisionPartLaplacian> singlePrecisionLaplacian_;  // the cycle's fine level, by default
     PetscMat operator_;    // A, a shell on 3 rows per owned unknown
     PetscKsp cycle_;       // one multigrid cycle of K (preonly + the two-level aggregation or GAMG)
     // -rbm_reduced_part_cycle local: of K's block of the owned unknowns (its CSR, which the cycle reads).
