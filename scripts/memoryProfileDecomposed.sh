@@ -5,7 +5,7 @@
 # massif, and prints, per rank, a markdown table of the heap at that rank's peak by item, in MiB
 # and bytes per point of the rank's processor mesh, stamped with the rbm commit and the date.
 # The model is scripts/memoryProfile.sh (one serial run); the items here add PETSc's matrices
-# of the part's Laplacian K (PartLaplacian) and their GAMG hierarchy.
+# of the part's Laplacian K (PartLaplacian), its multigrid cycle and their GAMG hierarchy.
 #
 #   scripts/memoryProfileDecomposed.sh CASE RANKS [RBM_MOVE_MESH]
 #
@@ -42,6 +42,8 @@ profileHeading "Memory profile of \`mpirun -np $ranks $(basename "$program") -ca
 # the first frame, from the allocation outwards, that itemOf names.
 items='function itemOf(frame) {
     if (frame ~ /PartLaplacian::assemble/) return "the scalar K as a PETSc MPIAIJ matrix (PartLaplacian::assemble)"
+    if (frame ~ /setUpAggregationCycle|distributedSmoothedProlongator/) return "the parts'"'"' cycle: P and its set-up'"'"'s products KT, PᵀKP (DistributedAggregation)"
+    if (frame ~ /SinglePrecisionPartLaplacian/) return "K in single precision, the cycle'"'"'s fine level (SinglePrecisionPartLaplacian)"
     if (frame ~ /PCSetUp_GAMG|PCGAMG|MatCoarsen/) return "PETSc GAMG hierarchy of that matrix (PCSetUp_GAMG: coarsening graph, prolongators, Galerkin products)"
     if (frame ~ /KSPSetUp|KSPSolve|PCSetUp|PCApply|VecDuplicate|KSPCreateVecs/) return "other PETSc solver work (vectors, smoothers)"
     if (frame ~ /ReducedHessian3D|ReducedEnergy::ReducedEnergy|PlanarReducedKernels/) return "reduced Hessian and energy: per-node data (ReducedHessian3D)"

@@ -4,6 +4,7 @@
 #include "NodeExchange.hpp"
 #include "SinglePrecisionPartLaplacian.hpp"
 
+#include <cstdio>
 #include <stdexcept>
 
 namespace rbm::motion {
@@ -34,7 +35,12 @@ PartLaplacian::PartLaplacian(const RbmProblem& problem, std::span<const double> 
         throw std::invalid_argument("PartLaplacian: one rank's part of a 3D problem is needed");
     if (laplacian.size() != static_cast<std::size_t>(problem.blockPattern().blockCount()))
         throw std::invalid_argument("PartLaplacian: one Laplacian entry per block of the pattern expected");
+    // A preconditioner named for the cycle (-rbm_reduced_cycle_pc_type cholesky, ...) is PETSc's,
+    // on PETSc's K: the "gamg" path, whose PC the options then replace.
+    PetscBool pcNamed = PETSC_FALSE;
+    RBM_CHECK_PETSC(PetscOptionsHasName(nullptr, "rbm_reduced_cycle_", "-pc_type", &pcNamed));
     char cycle[16] = "aggregation";
+    if (pcNamed) std::snprintf(cycle, sizeof(cycle), "gamg");
     RBM_CHECK_PETSC(PetscOptionsGetString(nullptr, "rbm_reduced_", "-part_cycle", cycle, sizeof(cycle), nullptr));
     const std::string cycleName = cycle;
     if (cycleName != "local" && cycleName != "gamg" && cycleName != "aggregation")

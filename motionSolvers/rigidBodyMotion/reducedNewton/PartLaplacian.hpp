@@ -19,16 +19,18 @@
 //
 // C is by default one cycle of rbm's two-level smoothed aggregation over the ranks
 // (DistributedAggregation.hpp: aggregates of each rank's own rows, P smoothed with the whole K,
-// Chebyshev smoothing with K, one GAMG cycle of Pᵀ K P). With -rbm_reduced_part_cycle gamg it is
-// one cycle of PETSc's GAMG of the whole K, whose first coarsening (MIS-2 over the ranks) was
-// the peak of a rank's memory. Measured on the 10⁶-cell cube turned 30° on 2 ranks, one thread
-// each, in one run: GAMG 1 284 MiB on the larger rank, 5 Newton iterations, 20.5 s of CPU a rank;
-// aggregation 1 125 MiB, 6 Newton iterations, 19.1 s (docs/parallel.md). With
-// -rbm_reduced_part_cycle local it is block Jacobi over the ranks: rbm's own smoothed-aggregation
-// cycle (ThreeVectorMultigrid, the serial 3D solver's) of the block of K that couples the rank's
-// owned unknowns, the couplings to other ranks left out, and no matrix over the ranks is
-// assembled: on the same cube 1 386 MiB per rank, 17 Newton iterations (the weaker cycle makes the
-// truncated Newton steps worse), 452 s (a loaded machine).
+// Chebyshev smoothing with K, one GAMG cycle of Pᵀ K P); after its set-up the fine level reads K
+// in single precision (SinglePrecisionPartLaplacian.hpp) and PETSc's K is released, unless
+// -rbm_reduced_inner_solve needs it for A. With -rbm_reduced_part_cycle gamg, or when a
+// preconditioner is named for the cycle (-rbm_reduced_cycle_pc_type ...), C is PETSc's
+// preconditioner of PETSc's K, GAMG unless named: GAMG's first coarsening (MIS-2 over the ranks)
+// was the peak of a rank's memory. Measured on the 10⁶-cell cube turned 30° on 2 ranks, one
+// thread each: GAMG 1 254 MiB on the larger rank, 5 Newton iterations; rbm's cycle 1 013 MiB,
+// 6 Newton iterations, each cheaper (docs/parallel.md). With -rbm_reduced_part_cycle local it is
+// block Jacobi over the ranks: rbm's own smoothed-aggregation cycle (ThreeVectorMultigrid, the
+// serial 3D solver's) of the block of K that couples the rank's owned unknowns, the couplings to
+// other ranks left out, and no matrix over the ranks is assembled: 17 Newton iterations on the
+// same cube (the weaker cycle makes the truncated Newton steps worse).
 //
 // Unknown rows: each rank's owned unknown nodes in their part order, after the lower ranks'
 // (one contiguous range per rank); a ghost unknown's row comes from its owner through the
