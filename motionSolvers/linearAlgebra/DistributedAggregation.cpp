@@ -134,42 +134,15 @@ DistributedProlongator distributedSmoothedProlongator(Mat k)
     return result;
 }
 
-void setUpAggregationCycle(KSP cycle, Mat k)
+PetscMat galerkinOperator(Mat k, Mat interpolation)
 {
-    const DistributedProlongator prolongator = distributedSmoothedProlongator(k);
-    PC preconditioner = nullptr;
-    RBM_CHECK_PETSC(KSPGetPC(cycle, &preconditioner));
-    RBM_CHECK_PETSC(PCSetType(preconditioner, PCMG));
-    RBM_CHECK_PETSC(PCMGSetLevels(preconditioner, 2, nullptr));
-    RBM_CHECK_PETSC(PCMGSetType(preconditioner, PC_MG_MULTIPLICATIVE));
-    RBM_CHECK_PETSC(PCMGSetCycleType(preconditioner, PC_MG_CYCLE_V));
-    RBM_CHECK_PETSC(PCMGSetInterpolation(preconditioner, 1, prolongator.interpolation));  // PCMG keeps a reference
-    // The Galerkin operator computed here rather than by PCMG (PC_MG_GALERKIN_BOTH), which keeps
-    // the product's intermediate data (Pᵀ explicitly, P's rows from other ranks) for a product
-    // again with new values: on the 10⁶-cell cube on 2 ranks ~80 MB a rank held through every solve.
-    PetscMat coarseOperator;
-    RBM_CHECK_PETSC(MatPtAP(k, prolongator.interpolation, MAT_INITIAL_MATRIX, PETSC_DEFAULT, coarseOperator.out()));
-    RBM_CHECK_PETSC(MatProductClear(coarseOperator));
-    RBM_CHECK_PETSC(PCMGSetGalerkin(preconditioner, PC_MG_GALERKIN_NONE));
-
-    KSP smoother = nullptr;
-    RBM_CHECK_PETSC(PCMGGetSmoother(preconditioner, 1, &smoother));
-    RBM_CHECK_PETSC(KSPSetType(smoother, KSPCHEBYSHEV));
-    const double lambda = prolongator.jacobiLambda;
-    RBM_CHECK_PETSC(KSPChebyshevSetEigenvalues(smoother, 1.1 * lambda, 0.1 * lambda));
-    RBM_CHECK_PETSC(KSPSetTolerances(smoother, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT, 2));
-    RBM_CHECK_PETSC(KSPSetNormType(smoother, KSP_NORM_NONE));
-    PC jacobi = nullptr;
-    RBM_CHECK_PETSC(KSPGetPC(smoother, &jacobi));
-    RBM_CHECK_PETSC(PCSetType(jacobi, PCJACOBI));
-
-    KSP coarse = nullptr;
-    RBM_CHECK_PETSC(PCMGGetCoarseSolve(preconditioner, &coarse));
-    RBM_CHECK_PETSC(KSPSetOperators(coarse, coarseOperator, coarseOperator));
-    RBM_CHECK_PETSC(KSPSetType(coarse, KSPPREONLY));
-    PC coarseCycle = nullptr;
-    RBM_CHECK_PETSC(KSPGetPC(coarse, &coarseCycle));
-    RBM_CHECK_PETSC(PCSetType(coarseCycle, PCGAMG));
+    // Formed once, PETSc's intermediate data of the product dropped: kept (for a product again
+    // with new values, as PCMG's own Galerkin option does) they held Pᵀ explicitly and P's rows
+    // from other ranks, about 80 MB a rank on the 10⁶-cell cube on 2 ranks through every solve.
+    PetscMat coarse;
+    RBM_CHECK_PETSC(MatPtAP(k, interpolation, MAT_INITIAL_MATRIX, PETSC_DEFAULT, coarse.out()));
+    RBM_CHECK_PETSC(MatProductClear(coarse));
+    return coarse;
 }
 
 } // namespace rbm::motion

@@ -1,11 +1,11 @@
 #pragma once
 // The first level of smoothed aggregation for a scalar symmetric positive definite matrix K
 // distributed over the ranks by rows (PETSc AIJ): rbm's aggregation of the serial cycle
-// (SmoothedAggregation.hpp) made to work across ranks, and the two-level cycle built on it.
+// (SmoothedAggregation.hpp) made to work across ranks: the two levels of a decomposed run's cycle.
 //
 // Why: PETSc's GAMG coarsens K's first level by a maximal independent set at distance 2 over
 // the ranks (MatCoarsen MIS-k), on a filtered copy of K's graph. On the hexahedral cube that
-// transient is the peak of a rank's memory in a decomposed run (docs/parallel.md). Here each
+// transient was the peak of a rank's memory in a decomposed run (docs/parallel.md). Here each
 // rank aggregates the rows it owns, on its diagonal block of K only (aggregateRows: a row and
 // its strong neighbours, 3 × 3 × 3 rows on a hexahedral grid, as MIS-2 makes), in one pass over
 // that block and with no communication; aggregates never cross ranks. The tentative
@@ -13,12 +13,10 @@
 // P = (I − ω D⁻¹K) T, ω = 4 / (3 λ), λ the largest eigenvalue of D⁻¹K by power iteration, so
 // P's rows at a rank's border reach the neighbour rank's aggregates as GAMG's do.
 //
-// The cycle (setUpAggregationCycle): PCMG with two levels, K on the fine one (PETSc's MatMult:
-// the couplings across ranks included), Pᵀ K P on the coarse one (PETSc's Galerkin product);
-// on the fine level Chebyshev smoothing of degree 2 on D⁻¹K over [0.1 λ, 1.1 λ] (GAMG's
-// default smoother), the coarse level one GAMG cycle (a matrix about 27 times smaller, whose
-// coarsening transient is as much smaller). On one rank P equals the serial aggregation's
-// first interpolation (SmoothedAggregation.hpp) to rounding.
+// The cycle on these two levels (PartThreeVectorCycle, on a part's three displacement components
+// at once): K on the fine level, Pᵀ K P (galerkinOperator) on the coarse one, about 27 times
+// smaller, whose own GAMG set-up is then as much smaller. On one rank P equals the serial
+// aggregation's first interpolation (SmoothedAggregation.hpp) to rounding.
 
 #include "PetscSupport.hpp"
 
@@ -37,10 +35,7 @@ struct DistributedProlongator {
 // Collective on k's communicator.
 DistributedProlongator distributedSmoothedProlongator(Mat k);
 
-// Makes cycle's preconditioner the two-level cycle above for its operator k (cycle: a KSP whose
-// operators are k and whose options prefix is set; its type is left to the caller). PETSc's
-// options under that prefix still apply: -<prefix>mg_levels_1_ksp_max_it for the smoothing,
-// -<prefix>mg_coarse_pc_type for the coarse cycle. Collective.
-void setUpAggregationCycle(KSP cycle, Mat k);
+// The coarse operator Pᵀ K P (PETSc's product, its intermediate data released). Collective.
+PetscMat galerkinOperator(Mat k, Mat interpolation);
 
 } // namespace rbm::motion

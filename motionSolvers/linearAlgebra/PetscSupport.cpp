@@ -242,6 +242,21 @@ void configureFromOptions(KSP ksp, const InheritedOptions& options)
     RBM_CHECK_PETSC(KSPSetFromOptions(ksp));
 }
 
+PetscKsp createGamgCycle(Mat matrix, const InheritedOptions& options)
+{
+    PetscKsp cycle;
+    RBM_CHECK_PETSC(KSPCreate(PetscObjectComm(reinterpret_cast<PetscObject>(matrix)), cycle.out()));
+    RBM_CHECK_PETSC(KSPSetOperators(cycle, matrix, matrix));
+    RBM_CHECK_PETSC(KSPSetType(cycle, KSPPREONLY));
+    PC preconditioner = nullptr;
+    RBM_CHECK_PETSC(KSPGetPC(cycle, &preconditioner));
+    RBM_CHECK_PETSC(PCSetType(preconditioner, PCGAMG));
+    options.addDefault("pc_gamg_threshold", "0.01");
+    configureFromOptions(cycle, options);
+    RBM_CHECK_PETSC(KSPSetUp(cycle));
+    return cycle;
+}
+
 void configureFromOptions(SNES snes, const InheritedOptions& options)
 {
     KSP ksp = nullptr;

@@ -1,5 +1,7 @@
 #include "ThreeVectorMultigrid.hpp"
 
+#include "ChebyshevSmoothing.hpp"
+
 #include "BlockRowLayout.hpp"
 #include "PetscSupport.hpp"
 #include "ThreadCount.hpp"
@@ -384,44 +386,9 @@ void ThreeVectorMultigrid::estimateLambda(Level& level)
 // Chebyshev on D⁻¹A over [0.1 λ, 1.1 λ] from level.solution (zero if zeroGuess) for level.rhs.
 void ThreeVectorMultigrid::smooth(Level& level, bool zeroGuess)
 {
-    const double upper = 1.1 * level.lambdaMax, lower = 0.1 * level.lambdaMax;
-    const double theta = 0.5 * (upper + lower), delta = 0.5 * (upper - lower);
-    const double sigma = theta / delta;
-    double rho = 1.0 / sigma;
-    const int rows = level.rows;
-    double* x = level.x;
-    double* r = residual_.data();
-    double* d = direction_.data();
-    double* product = product_.data();
-    const double* b = level.b;
-    const double* dinv = level.inverseDiagonal.data();
-    const bool threads = worthThreading(static_cast<std::size_t>(level.offsets[rows]));
-    // r = D⁻¹ (b − A x), d = r / θ, x += d
-    if (!zeroGuess) multiply(level, x, r);
-#pragma omp parallel for schedule(static) if (threads)
-    for (int row = 0; row < rows; ++row)
-        for (int c = 0; c < 3; ++c) {
-            const std::size_t k = 3 * static_cast<std::size_t>(row) + c;
-            const double value = dinv[row] * (b[k] - (zeroGuess ? 0.0 : r[k]));
-            r[k] = value;
-            d[k] = value / theta;
-            x[k] = (zeroGuess ? 0.0 : x[k]) + d[k];
-        }
-    for (int step = 1; step < degree_; ++step) {
-        // r −= D⁻¹ A d; d = ρ' ρ d + (2 ρ'/δ) r; x += d
-        multiply(level, d, product);
-        const double rhoNext = 1.0 / (2.0 * sigma - rho);
-        const double keep = rhoNext * rho, push = 2.0 * rhoNext / delta;
-#pragma omp parallel for schedule(static) if (threads)
-        for (int row = 0; row < rows; ++row)
-            for (int c = 0; c < 3; ++c) {
-                const std::size_t k = 3 * static_cast<std::size_t>(row) + c;
-                r[k] -= dinv[row] * product[k];
-                d[k] = keep * d[k] + push * r[k];
-                x[k] += d[k];
-            }
-        rho = rhoNext;
-    }
+    chebyshevSmooth(level.rows, level.lambdaMax, degree_, level.inverseDiagonal.data(), level.b, level.x, zeroGuess,
+                    residual_.data(), direction_.data(), product_.data(), static_cast<std::size_t>(level.offsets[level.rows]),
+                    [&](const double* in, double* out) { multiply(level, in, out); });
 }
 
 void ThreeVectorMultigrid::coarseSolve(Level& level)

@@ -48,6 +48,8 @@ LaplacianPreconditioner::LaplacianPreconditioner(const RbmProblem& problem, Line
             throw std::invalid_argument("cyclic patches are not supported in a distributed solve yet");
         vectorSystem_ = true;
         partLaplacian_ = std::make_unique<PartLaplacian>(problem_, laplacian_, relativeTolerance_, innerSolve);
+        // A decision every rank takes alike (the turned start's, hasScalarSolve).
+        anyRankHasSlidingNodes_ = problem_.maximumOverRanks(problem_.hasSlidingNodes() ? 1.0 : 0.0) > 0.0;
         // PETSc holds its own copy of K: the array goes, as for the serial 3D cycle, unless the
         // warm start reads it (sliding nodes), and before GAMG's set-up, the part's memory peak
         // (with the reduced energy built after K⁻¹, ReducedNewtonSolver.hpp: 347 → 335 MiB per
@@ -301,6 +303,12 @@ bool LaplacianPreconditioner::projectedCycleSolve(std::span<const double> r, std
     return conjugateGradients(multiply, cycle, projected_, z, relativeTolerance, maximumIterations, cycleWork_);
 }
 
+bool LaplacianPreconditioner::hasScalarSolve() const
+{
+    if (partLaplacian_) return !anyRankHasSlidingNodes_;
+    return !vectorSystem_ && (cholesky_ || threeVectorCycle_);
+}
+
 bool LaplacianPreconditioner::solveScalar(std::span<const double> b, std::span<double> s)
 {
     if (cholesky_) {
@@ -313,6 +321,7 @@ bool LaplacianPreconditioner::solveScalar(std::span<const double> b, std::span<d
     // costs more cycles than it saves Newton work and a looser one costs CG iterations.
     constexpr double harmonicShareTolerance = 1e-2;
     constexpr int maximumIterations = 50;
+    if (partLaplacian_) return partLaplacian_->solveScalar(b, s, harmonicShareTolerance, maximumIterations);
     const std::size_t size = static_cast<std::size_t>(problem_.unknownNodeCount());
     std::vector<double> in(3 * size, 0.0), out(3 * size);
     auto cycle = [&](std::span<const double> residual, std::span<double> result) {

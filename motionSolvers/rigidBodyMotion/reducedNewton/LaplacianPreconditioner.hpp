@@ -54,11 +54,12 @@ public:
     // false if an iterative solve failed.
     bool apply(std::span<const double> r, std::span<double> z);
     // s = K⁻¹ b for one scalar right-hand side (one value per unknown node): K's factor, or CG
-    // preconditioned by the 3D cycle to a loose tolerance. Only where hasScalarSolve(); false
-    // if CG failed.
+    // preconditioned by the 3D cycle (or a part's cycle) to a loose tolerance. Only where
+    // hasScalarSolve(); false if CG failed.
     bool solveScalar(std::span<const double> b, std::span<double> s);
-    // One rank, no sliding nodes, K factorised by rbm or its 3D multigrid cycle.
-    bool hasScalarSolve() const { return !vectorSystem_ && (cholesky_ || threeVectorCycle_); }
+    // No sliding nodes, and K factorised by rbm, its 3D multigrid cycle on one rank, or a part's
+    // K⁻¹ (PartLaplacian::solveScalar: s on the ghost nodes too, from their owners).
+    bool hasScalarSolve() const;
     // apply is one fixed linear map (a factorisation, or the 3D cycle without sliding nodes; not
     // an inner iteration whose result depends on its tolerance).
     bool isFixedLinearMap() const
@@ -103,6 +104,7 @@ private:
     // instead of system_ (ThreeVectorMultigrid.hpp).
     std::unique_ptr<ThreeVectorMultigrid> threeVectorCycle_;
     std::unique_ptr<PartLaplacian> partLaplacian_;  // a part's K⁻¹
+    bool anyRankHasSlidingNodes_ = false;            // of a part: over all ranks
     Mat factor_ = nullptr;                 // the factor inside system_'s PC (not owned)
     PetscMat components_, solutions_;      // dense m × dimension right-hand sides and solutions
     std::unique_ptr<InheritedOptions> laplacianOptions_;  // rbm's defaults for K's solver in PETSc (CHOLMOD, BoomerAMG)

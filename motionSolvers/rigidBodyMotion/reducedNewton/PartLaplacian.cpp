@@ -1,8 +1,7 @@
 #include "PartLaplacian.hpp"
 
-#include "DistributedAggregation.hpp"
 #include "NodeExchange.hpp"
-#include "SinglePrecisionPartLaplacian.hpp"
+#include "PartThreeVectorCycle.hpp"
 
 #include <cstdio>
 #include <stdexcept>
@@ -152,40 +151,14 @@ void PartLaplacian::setUpLocalCycle(std::span<const double> laplacian)
 
 void PartLaplacian::setUpCycle()
 {
-    const MPI_Comm communicator = problem_.nodeExchange()->communicator();
-    RBM_CHECK_PETSC(KSPCreate(communicator, cycle_.out()));
-    RBM_CHECK_PETSC(KSPSetOperators(cycle_, stiffness_, stiffness_));
-    RBM_CHECK_PETSC(KSPSetType(cycle_, KSPPREONLY));
-    cycleOptions_ = std::make_unique<InheritedOptions>("reduced_cycle");
-    // The prefix before the multigrid levels exist: PCMG gives them theirs when they are made.
-    RBM_CHECK_PETSC(KSPSetOptionsPrefix(cycle_, cycleOptions_->prefix().c_str()));
     if (useAggregationCycle_) {
-        setUpAggregationCycle(cycle_, stiffness_);
-        // Where K is read only by the cycle, its fine level reads it in single precision
-        // (SinglePrecisionPartLaplacian.hpp), copied from PETSc's K after the set-up's products
-        // (whose transient is the peak of the set-up), and PETSc's K is released.
-        if (!innerSolve_) {
-            singlePrecisionLaplacian_ = std::make_unique<SinglePrecisionPartLaplacian>(problem_, stiffness_, unknownRows());
-            const Mat single = singlePrecisionLaplacian_->matrix();
-            RBM_CHECK_PETSC(KSPSetOperators(cycle_, single, single));
-            stiffness_.reset();
-        }
-        // The coarse level's GAMG keeps the threshold below for the same reason.
-        cycleOptions_->addDefault("mg_coarse_pc_gamg_threshold", "0.01");
-    } else {
-        PC preconditioner = nullptr;
-        RBM_CHECK_PETSC(KSPGetPC(cycle_, &preconditioner));
-        RBM_CHECK_PETSC(PCSetType(preconditioner, PCGAMG));
+        threeVectorCycle_ = std::make_unique<PartThreeVectorCycle>(problem_, stiffness_, unknownRows());
+        // PETSc's K only where the CG on A multiplies by it (the cycle reads its own copy).
+        if (!innerSolve_) stiffness_.reset();
+        return;
     }
-    // GAMG drops couplings below 0.01 of the diagonal's scale from its coarsening graph: on a
-    // boundary-layer mesh (weights 1/|d|², cells of aspect ratio up to thousands) the couplings
-    // along the layers, which PETSc's default (0, keep all) aggregates with those across them, so
-    // the cycle barely converges. tutorials/wing3D at 27 864 cells on 2 ranks, one step: 134 s
-    // wall and 12 Newton iterations with 0, 8.6 s and 8 with 0.01; the 2·10⁵-cell cube on 2
-    // ranks: the same 5 Newton iterations, 311 against 310 MB per rank. Given options win.
-    cycleOptions_->addDefault("pc_gamg_threshold", "0.01");
-    configureFromOptions(cycle_, *cycleOptions_);
-    RBM_CHECK_PETSC(KSPSetUp(cycle_));
+    cycleOptions_ = std::make_unique<InheritedOptions>("reduced_cycle");
+    cycle_ = createGamgCycle(stiffness_, *cycleOptions_);
 }
 
 void PartLaplacian::setUpSolver()
@@ -256,13 +229,14 @@ void PartLaplacian::betweenProjections(Vec in, Vec out, bool cycle) const
     RBM_CHECK_PETSC(VecGetArray(projected_, &projected));
     project(projected);
     RBM_CHECK_PETSC(VecRestoreArray(projected_, &projected));
-    if (cycle && useLocalCycle_) {
+    if (cycle && (useLocalCycle_ || threeVectorCycle_)) {
         const double* from = nullptr;
         double* to = nullptr;
         RBM_CHECK_PETSC(VecGetArrayRead(projected_, &from));
         RBM_CHECK_PETSC(VecGetArray(out, &to));
         const std::size_t entries = 3 * static_cast<std::size_t>(ownedUnknowns_);
-        if (localCycle_) localCycle_->apply({from, entries}, {to, entries});
+        if (threeVectorCycle_) threeVectorCycle_->apply({from, entries}, {to, entries});
+        else if (localCycle_) localCycle_->apply({from, entries}, {to, entries});
         RBM_CHECK_PETSC(VecRestoreArray(out, &to));
         RBM_CHECK_PETSC(VecRestoreArrayRead(projected_, &from));
     } else {
@@ -294,6 +268,29 @@ PetscErrorCode PartLaplacian::shellMultiply(Mat matrix, Vec x, Vec y)
         void* context = nullptr;
         RBM_CHECK_PETSC(MatShellGetContext(matrix, &context));
         static_cast<const PartLaplacian*>(context)->betweenProjections(x, y, false);
+        return 0;
+    } catch (const std::exception&) {
+        return PETSC_ERR_LIB;
+    }
+}
+
+PetscErrorCode PartLaplacian::shellScalarCycle(PC preconditioner, Vec r, Vec z)
+{
+    try {
+        void* context = nullptr;
+        RBM_CHECK_PETSC(PCShellGetContext(preconditioner, &context));
+        auto* self = static_cast<PartLaplacian*>(context);
+        const std::size_t rows = static_cast<std::size_t>(self->ownedUnknowns_);
+        std::vector<double> in(3 * rows, 0.0), out(3 * rows);
+        const double* from = nullptr;
+        RBM_CHECK_PETSC(VecGetArrayRead(r, &from));
+        for (std::size_t a = 0; a < rows; ++a) in[3 * a] = from[a];
+        RBM_CHECK_PETSC(VecRestoreArrayRead(r, &from));
+        self->threeVectorCycle_->apply(in, out);
+        double* to = nullptr;
+        RBM_CHECK_PETSC(VecGetArray(z, &to));
+        for (std::size_t a = 0; a < rows; ++a) to[a] = out[3 * a];
+        RBM_CHECK_PETSC(VecRestoreArray(z, &to));
         return 0;
     } catch (const std::exception&) {
         return PETSC_ERR_LIB;
@@ -332,6 +329,55 @@ bool PartLaplacian::apply(std::span<const double> r, std::span<double> z)
     lastIterations_ = innerSolve_ ? static_cast<int>(iterations) : 0;
     KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
     RBM_CHECK_PETSC(KSPGetConvergedReason(solver_, &reason));
+    return reason > 0;
+}
+
+bool PartLaplacian::solveScalar(std::span<const double> b, std::span<double> s, double relativeTolerance,
+                                int maximumIterations)
+{
+    if (!setUp_) throw std::logic_error("PartLaplacian::solveScalar before setUp");
+    const std::size_t unknowns = static_cast<std::size_t>(problem_.unknownNodeCount());
+    if (b.size() != unknowns || s.size() != unknowns)
+        throw std::invalid_argument("PartLaplacian::solveScalar: one entry per unknown node expected");
+    if (useLocalCycle_) throw std::logic_error("PartLaplacian::solveScalar: not with -rbm_reduced_part_cycle local");
+    const MPI_Comm communicator = problem_.nodeExchange()->communicator();
+    if (!scalarSolver_) {
+        RBM_CHECK_PETSC(KSPCreate(communicator, scalarSolver_.out()));
+        RBM_CHECK_PETSC(KSPSetType(scalarSolver_, KSPCG));
+        if (threeVectorCycle_) {
+            // K as the cycle reads it, the cycle on the first of its three vectors.
+            const Mat laplacian = threeVectorCycle_->fineLevel().matrix();
+            RBM_CHECK_PETSC(KSPSetOperators(scalarSolver_, laplacian, laplacian));
+            PC preconditioner = nullptr;
+            RBM_CHECK_PETSC(KSPGetPC(scalarSolver_, &preconditioner));
+            RBM_CHECK_PETSC(PCSetType(preconditioner, PCSHELL));
+            RBM_CHECK_PETSC(PCShellSetContext(preconditioner, this));
+            RBM_CHECK_PETSC(PCShellSetApply(preconditioner, &shellScalarCycle));
+        } else {
+            // PETSc's cycle: its operator and preconditioner shared, nothing set up again.
+            Mat laplacian = nullptr;
+            RBM_CHECK_PETSC(KSPGetOperators(cycle_, &laplacian, nullptr));
+            PC cycle = nullptr;
+            RBM_CHECK_PETSC(KSPGetPC(cycle_, &cycle));
+            RBM_CHECK_PETSC(KSPSetPC(scalarSolver_, cycle));
+            RBM_CHECK_PETSC(KSPSetOperators(scalarSolver_, laplacian, laplacian));
+        }
+    }
+    RBM_CHECK_PETSC(KSPSetTolerances(scalarSolver_, relativeTolerance, 0.0, PETSC_DEFAULT, maximumIterations));
+    std::vector<double> owned(b.begin(), b.begin() + ownedUnknowns_);
+    std::fill(s.begin(), s.end(), 0.0);
+    PetscVec right, solution;
+    RBM_CHECK_PETSC(VecCreateMPIWithArray(communicator, 1, ownedUnknowns_, PETSC_DECIDE, owned.data(), right.out()));
+    RBM_CHECK_PETSC(VecCreateMPIWithArray(communicator, 1, ownedUnknowns_, PETSC_DECIDE, s.data(), solution.out()));
+    RBM_CHECK_PETSC(KSPSolve(scalarSolver_, right, solution));
+    KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
+    RBM_CHECK_PETSC(KSPGetConvergedReason(scalarSolver_, &reason));
+    // The ghosts' values from their owners, through a node array.
+    std::vector<double> nodeValues(static_cast<std::size_t>(problem_.nodeCount()), 0.0);
+    const std::vector<int>& nodes = problem_.unknownNodes();
+    for (int a = 0; a < ownedUnknowns_; ++a) nodeValues[nodes[a]] = s[a];
+    problem_.nodeExchange()->updateGhosts(nodeValues, 1);
+    for (std::size_t a = static_cast<std::size_t>(ownedUnknowns_); a < unknowns; ++a) s[a] = nodeValues[nodes[a]];
     return reason > 0;
 }
 

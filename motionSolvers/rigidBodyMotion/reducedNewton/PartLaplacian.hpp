@@ -41,7 +41,7 @@
 
 #include "PetscSupport.hpp"
 #include "RbmProblem.hpp"
-#include "SinglePrecisionPartLaplacian.hpp"
+#include "PartThreeVectorCycle.hpp"
 #include "ThreeVectorMultigrid.hpp"
 
 #include <memory>
@@ -69,6 +69,11 @@ public:
     // z = A⁻¹ P r on the owned rows (3 per unknown node; ghost rows of z zero, of r ignored);
     // false if CG did not converge.
     bool apply(std::span<const double> r, std::span<double> z);
+    // s = K⁻¹ b for one scalar right-hand side, b on the owned unknown nodes (ghost rows
+    // ignored), s on every unknown node (the ghosts' from their owners): CG on K preconditioned by
+    // the cycle, to relativeTolerance of b, at most maximumIterations. The turned start's
+    // harmonic share (TurnedStart.hpp). False if CG did not converge; collective.
+    bool solveScalar(std::span<const double> b, std::span<double> s, double relativeTolerance, int maximumIterations);
     // CG iterations of the last apply (0 when K⁻¹ is one cycle).
     int lastIterations() const { return lastIterations_; }
 
@@ -89,6 +94,7 @@ private:
     void betweenProjections(Vec in, Vec out, bool cycle) const;
     static PetscErrorCode shellMultiply(Mat matrix, Vec x, Vec y);
     static PetscErrorCode shellPrecondition(PC preconditioner, Vec r, Vec z);
+    static PetscErrorCode shellScalarCycle(PC preconditioner, Vec r, Vec z);  // rbm's cycle on one vector
     // The per-component products: out_q = K in_q (cycle false) or C in_q (cycle true).
     void componentwise(Vec in, Vec out, bool cycle) const;
 
@@ -98,10 +104,10 @@ private:
     bool innerSolve_ = true;
     double relativeTolerance_ = 0.0;
     bool setUp_ = false;
-    PetscMat stiffness_;   // scalar K, owned unknown rows (released after set-up where the single-precision K replaces it)
-    std::unique_ptr<SinglePrecisionPartLaplacian> singlePrecisionLaplacian_;  // the cycle's fine level, by default
+    PetscMat stiffness_;   // scalar K, owned unknown rows (released after rbm's cycle's set-up unless A needs it)
+    std::unique_ptr<PartThreeVectorCycle> threeVectorCycle_;  // rbm's cycle, the default
     PetscMat operator_;    // A, a shell on 3 rows per owned unknown
-    PetscKsp cycle_;       // one multigrid cycle of K (preonly + the two-level aggregation or GAMG)
+    PetscKsp cycle_;       // PETSc's cycle of K (preonly + GAMG or the named preconditioner)
     // -rbm_reduced_part_cycle local: of K's block of the owned unknowns (its CSR, which the cycle reads).
     std::vector<int> localOffsets_, localColumns_;
     std::vector<double> localValues_;
@@ -112,6 +118,7 @@ private:
     PetscVec componentIn_, componentOut_;  // one component, owned unknown rows
     mutable PetscVec projected_;            // P x (product) or P r (preconditioner)
     PetscVec rightHandSide_, solution_;
+    PetscKsp scalarSolver_;  // CG on K with the cycle (solveScalar), made at its first use
     std::unique_ptr<InheritedOptions> options_, cycleOptions_;
     std::vector<double> projectedRightHandSide_;
     int lastIterations_ = 0;

@@ -12,7 +12,6 @@ SinglePrecisionPartLaplacian::SinglePrecisionPartLaplacian(const RbmProblem& pro
 {
     if (!problem.isPart()) throw std::invalid_argument("SinglePrecisionPartLaplacian: one rank's part is needed");
     diagonal_.resize(static_cast<std::size_t>(ownedUnknowns_));
-    nodeValues_.assign(static_cast<std::size_t>(problem.nodeCount()), 0.0);
 }
 
 SinglePrecisionPartLaplacian::SinglePrecisionPartLaplacian(const RbmProblem& problem, std::span<const double> laplacian)
@@ -65,26 +64,68 @@ void SinglePrecisionPartLaplacian::createShell()
     RBM_CHECK_PETSC(MatSetOption(matrix_, MAT_SYMMETRIC, PETSC_TRUE));
 }
 
+// The ghost unknowns' values of `width` interleaved vectors x (width per owned unknown) from
+// their owners, in ghostValues_ (width per ghost unknown, in the part's order), through a node
+// array (the exchange's).
+void SinglePrecisionPartLaplacian::fetchGhosts(const double* x, int width) const
+{
+    const std::vector<int>& nodes = problem_.unknownNodes();
+    const int unknowns = problem_.unknownNodeCount();
+    const std::size_t w = static_cast<std::size_t>(width);
+    nodeValues_.resize(w * static_cast<std::size_t>(problem_.nodeCount()));
+    ghostValues_.resize(w * static_cast<std::size_t>(unknowns - ownedUnknowns_));
+    for (int a = 0; a < ownedUnknowns_; ++a)
+        for (std::size_t c = 0; c < w; ++c) nodeValues_[w * static_cast<std::size_t>(nodes[a]) + c] = x[w * static_cast<std::size_t>(a) + c];
+    problem_.nodeExchange()->updateGhosts(nodeValues_, width);
+    for (int b = ownedUnknowns_; b < unknowns; ++b)
+        for (std::size_t c = 0; c < w; ++c)
+            ghostValues_[w * static_cast<std::size_t>(b - ownedUnknowns_) + c] = nodeValues_[w * static_cast<std::size_t>(nodes[b]) + c];
+}
+
 void SinglePrecisionPartLaplacian::multiply(Vec x, Vec y) const
 {
     const BlockPattern& pattern = problem_.blockPattern();
-    const std::vector<int>& nodes = problem_.unknownNodes();
     const double* in = nullptr;
     RBM_CHECK_PETSC(VecGetArrayRead(x, &in));
-    for (int a = 0; a < ownedUnknowns_; ++a) nodeValues_[nodes[a]] = in[a];
-    problem_.nodeExchange()->updateGhosts(nodeValues_, 1);
+    fetchGhosts(in, 1);
     double* out = nullptr;
     RBM_CHECK_PETSC(VecGetArray(y, &out));
+    const int* offsets = pattern.rowOffsets.data();
+    const int* columns = pattern.columns.data();
+    const float* values = values_.data();
+    const double* ghosts = ghostValues_.data();
     for (int a = 0; a < ownedUnknowns_; ++a) {
         double sum = 0.0;
-        for (int position = pattern.rowOffsets[a]; position < pattern.rowOffsets[a + 1]; ++position) {
-            const int b = pattern.columns[position];
-            sum += static_cast<double>(values_[position]) * (b < ownedUnknowns_ ? in[b] : nodeValues_[nodes[b]]);
+        for (int position = offsets[a]; position < offsets[a + 1]; ++position) {
+            const int b = columns[position];
+            sum += static_cast<double>(values[position]) * (b < ownedUnknowns_ ? in[b] : ghosts[b - ownedUnknowns_]);
         }
         out[a] = sum;
     }
     RBM_CHECK_PETSC(VecRestoreArray(y, &out));
     RBM_CHECK_PETSC(VecRestoreArrayRead(x, &in));
+}
+
+void SinglePrecisionPartLaplacian::multiplyThree(const double* x, double* y) const
+{
+    const BlockPattern& pattern = problem_.blockPattern();
+    fetchGhosts(x, 3);
+    const int* offsets = pattern.rowOffsets.data();
+    const int* columns = pattern.columns.data();
+    const float* values = values_.data();
+    const double* ghosts = ghostValues_.data();
+    for (int a = 0; a < ownedUnknowns_; ++a) {
+        double s0 = 0.0, s1 = 0.0, s2 = 0.0;
+        for (int position = offsets[a]; position < offsets[a + 1]; ++position) {
+            const double value = values[position];
+            const int b = columns[position];
+            const double* xb = b < ownedUnknowns_ ? x + 3 * static_cast<std::size_t>(b)
+                                                  : ghosts + 3 * static_cast<std::size_t>(b - ownedUnknowns_);
+            s0 += value * xb[0], s1 += value * xb[1], s2 += value * xb[2];
+        }
+        double* out = y + 3 * static_cast<std::size_t>(a);
+        out[0] = s0, out[1] = s1, out[2] = s2;
+    }
 }
 
 PetscErrorCode SinglePrecisionPartLaplacian::shellMultiply(Mat matrix, Vec x, Vec y)

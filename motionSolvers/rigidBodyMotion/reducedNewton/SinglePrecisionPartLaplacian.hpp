@@ -10,9 +10,8 @@
 // preconditioner it is part of is applied to a flexible Newton-CG, so its rounding changes the
 // path of the iteration, not its end: each Newton step is tested on the double-precision energy.
 //
-// A product y = K x gathers the ghost unknowns' x from their owners (NodeExchange::updateGhosts,
-// one value a node) and sums each owned row in the pattern's order: deterministic for a given
-// decomposition. Rows and columns are the owned unknowns of every rank, in PartLaplacian's order
+// A product y = K x gathers the ghost unknowns' x from their owners (NodeExchange::updateGhosts)
+// and sums each owned row in the pattern's order: deterministic for a given decomposition. Rows and columns are the owned unknowns of every rank, in PartLaplacian's order
 // (each rank's after the lower ranks').
 
 #include "PetscSupport.hpp"
@@ -36,6 +35,11 @@ public:
     SinglePrecisionPartLaplacian& operator=(const SinglePrecisionPartLaplacian&) = delete;
 
     Mat matrix() const { return matrix_; }  // MatMult and MatGetDiagonal
+    // y = K x for three vectors at once, interleaved (3 values per owned unknown): one pass over
+    // K and one ghost exchange serve the three (PartThreeVectorCycle's smoothing). Collective.
+    void multiplyThree(const double* x, double* y) const;
+    const std::vector<double>& diagonal() const { return diagonal_; }  // per owned unknown
+    int ownedRows() const { return ownedUnknowns_; }
 
 private:
     explicit SinglePrecisionPartLaplacian(const RbmProblem& problem);
@@ -48,7 +52,11 @@ private:
     int ownedUnknowns_ = 0;
     std::vector<float> values_;     // the owned rows' entries, blockPattern() order
     std::vector<double> diagonal_;  // per owned unknown
-    mutable std::vector<double> nodeValues_;  // one per node of the part, for the ghost exchange
+    void fetchGhosts(const double* x, int width) const;
+
+    // For the ghost exchange of a product, sized at first use (1 or 3 values a node): a node array
+    // (the exchange's), and the ghost unknowns' values in the part's order.
+    mutable std::vector<double> nodeValues_, ghostValues_;
     PetscMat matrix_;
 };
 

@@ -1,8 +1,10 @@
 #include "TurnedStart.hpp"
 
 #include "LocalGlobalSolver.hpp"
+#include "NodeExchange.hpp"
 #include "RbmEnergy.hpp"
 
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -12,7 +14,7 @@ bool turnedHarmonicStart(const RbmProblem& problem, LaplacianPreconditioner& pre
                          std::span<const Vector3> prescribedDisplacement, std::vector<Vector3>& u,
                          std::span<const Vector3> base)
 {
-    // One rank, no sliding nodes, K factorised by rbm or its 3D multigrid cycle; every prescribed
+    // No sliding nodes, K factorised by rbm or its 3D multigrid cycle, or a part's; every prescribed
     // node either fixed (no change) or moved by one rigid motion y = R (x − c) + c', fitted here
     // (2D: the best angle; 3D: Kabsch). x: the reference positions, or those displaced by base.
     if (!preconditioner.hasScalarSolve()) return false;
@@ -35,29 +37,42 @@ bool turnedHarmonicStart(const RbmProblem& problem, LaplacianPreconditioner& pre
         const Vector3 d = flat(prescribedDisplacement[node]);
         return d.x != 0.0 || d.y != 0.0 || d.z != 0.0;
     };
-    Vector3 centre{}, moved{};
-    int count = 0;
-    for (int node = 0; node < n; ++node) {
+    // The sums run over the nodes this rank owns (all nodes on one rank) and are added over the
+    // ranks of a part (each node counted once), so every rank fits the same motion.
+    const int owned = problem.ownedNodeCount();
+    const MPI_Comm communicator = problem.isPart() ? problem.nodeExchange()->communicator() : MPI_COMM_SELF;
+    std::array<double, 7> firstSums{};  // centre, moved, count
+    for (int node = 0; node < owned; ++node) {
         if (problem.isUnknown(node) || !moves(node)) continue;
-        centre += flat(x[node]);
-        moved += flat(x[node] + prescribedDisplacement[node]);
-        ++count;
+        const Vector3 from = flat(x[node]), to = flat(x[node] + prescribedDisplacement[node]);
+        for (int k = 0; k < 3; ++k) firstSums[k] += from[k], firstSums[3 + k] += to[k];
+        firstSums[6] += 1.0;
     }
+    if (problem.isPart()) RBM_CHECK_PETSC(MPI_Allreduce(MPI_IN_PLACE, firstSums.data(), 7, MPI_DOUBLE, MPI_SUM, communicator));
+    const double count = firstSums[6];
     if (count < dim) return false;
-    centre /= static_cast<double>(count);
-    moved /= static_cast<double>(count);
-    double crossSum = 0.0, dotSum = 0.0, size = 0.0;
-    Matrix3 covariance{};  // Σ b aᵀ, a = x − c, b = y − c'
-    for (int node = 0; node < n; ++node) {
+    const Vector3 centre = Vector3{firstSums[0], firstSums[1], firstSums[2]} / count;
+    const Vector3 moved = Vector3{firstSums[3], firstSums[4], firstSums[5]} / count;
+    std::array<double, 11> secondSums{};  // crossSum, dotSum, covariance Σ b aᵀ (a = x − c, b = y − c')
+    double size = 0.0;
+    for (int node = 0; node < owned; ++node) {
         if (problem.isUnknown(node) || !moves(node)) continue;
         const Vector3 a = flat(x[node]) - centre;
         const Vector3 b = flat(x[node] + prescribedDisplacement[node]) - moved;
-        crossSum += a.x * b.y - a.y * b.x;
-        dotSum += a.x * b.x + a.y * b.y;
+        secondSums[0] += a.x * b.y - a.y * b.x;
+        secondSums[1] += a.x * b.x + a.y * b.y;
         for (int row = 0; row < 3; ++row)
-            for (int column = 0; column < 3; ++column) covariance.m[row][column] += b[row] * a[column];
+            for (int column = 0; column < 3; ++column) secondSums[2 + 3 * row + column] += b[row] * a[column];
         size = std::max(size, norm(a));
     }
+    if (problem.isPart()) {
+        RBM_CHECK_PETSC(MPI_Allreduce(MPI_IN_PLACE, secondSums.data(), 11, MPI_DOUBLE, MPI_SUM, communicator));
+        RBM_CHECK_PETSC(MPI_Allreduce(MPI_IN_PLACE, &size, 1, MPI_DOUBLE, MPI_MAX, communicator));
+    }
+    const double crossSum = secondSums[0], dotSum = secondSums[1];
+    Matrix3 covariance{};
+    for (int row = 0; row < 3; ++row)
+        for (int column = 0; column < 3; ++column) covariance.m[row][column] = secondSums[2 + 3 * row + column];
     // The turn as a rotation vector ω (R = exp([ω]×)).
     Matrix3 rotation;
     Vector3 turn{};
@@ -71,12 +86,14 @@ bool turnedHarmonicStart(const RbmProblem& problem, LaplacianPreconditioner& pre
         // Near a half turn the axis (and the sense of the interpolation) is ambiguous.
         if (norm(turn) > 0.99 * std::numbers::pi) return false;
     }
-    for (int node = 0; node < n; ++node) {
+    int rigid = 1;  // every prescribed node of every rank on the motion (ghosts: their owners check)
+    for (int node = 0; node < owned && rigid; ++node) {
         if (problem.isUnknown(node) || !moves(node)) continue;
         const Vector3 target = flat(x[node] + prescribedDisplacement[node]);
-        if (norm(rotation * (flat(x[node]) - centre) + moved - target) > 1e-9 * std::max(size, 1e-300))
-            return false;  // not one rigid motion
+        if (norm(rotation * (flat(x[node]) - centre) + moved - target) > 1e-9 * std::max(size, 1e-300)) rigid = 0;
     }
+    if (problem.isPart()) RBM_CHECK_PETSC(MPI_Allreduce(MPI_IN_PLACE, &rigid, 1, MPI_INT, MPI_MIN, communicator));
+    if (!rigid) return false;  // not one rigid motion
     // s: harmonic, 1 on the moving nodes, 0 on the fixed ones (K s = b, b_a = Σ_moving w).
     const CellNeighbourGraph& graph = problem.graph();
     const std::vector<int>& nodes = problem.unknownNodes();

@@ -15,11 +15,11 @@ namespace {
 
 // -rbm_reduced_correction_memory N, -rbm_reduced_harmonic_basis false and
 // -rbm_reduced_turned_start false override the options.
-// A part (RbmProblem::isPart) has neither the turned start nor the harmonic basis: both look at
-// the whole prescribed boundary.
+// A part (RbmProblem::isPart) has no harmonic basis (it looks at the whole prescribed boundary);
+// its turned start fits the boundary's motion from sums over the ranks (TurnedStart.cpp).
 WarmStartOptions withPetscOptions(WarmStartOptions options, const RbmProblem& problem)
 {
-    if (problem.isPart()) options.turnedStart = options.harmonicBasis = false;
+    if (problem.isPart()) options.harmonicBasis = false;
     PetscInt memory = options.correctionMemory;
     RBM_CHECK_PETSC(PetscOptionsGetInt(nullptr, "rbm_reduced_", "-correction_memory", &memory, nullptr));
     options.correctionMemory = std::max<int>(0, static_cast<int>(memory));
@@ -28,7 +28,7 @@ WarmStartOptions withPetscOptions(WarmStartOptions options, const RbmProblem& pr
     options.harmonicBasis = harmonicBasis == PETSC_TRUE;
     PetscBool turnedStart = options.turnedStart ? PETSC_TRUE : PETSC_FALSE;
     RBM_CHECK_PETSC(PetscOptionsGetBool(nullptr, "rbm_reduced_", "-turned_start", &turnedStart, nullptr));
-    options.turnedStart = turnedStart == PETSC_TRUE && !problem.isPart();
+    options.turnedStart = turnedStart == PETSC_TRUE;
     return options;
 }
 
