@@ -305,7 +305,7 @@ bool LaplacianPreconditioner::projectedCycleSolve(std::span<const double> r, std
 
 bool LaplacianPreconditioner::hasScalarSolve() const
 {
-    if (partLaplacian_) return !anyRankHasSlidingNodes_;
+    if (partLaplacian_) return !anyRankHasSlidingNodes_ && partLaplacian_->hasScalarSolve();
     return !vectorSystem_ && (cholesky_ || threeVectorCycle_);
 }
 

@@ -74,6 +74,8 @@ public:
     // the cycle, to relativeTolerance of b, at most maximumIterations. The turned start's
     // harmonic share (TurnedStart.hpp). False if CG did not converge; collective.
     bool solveScalar(std::span<const double> b, std::span<double> s, double relativeTolerance, int maximumIterations);
+    // Whether solveScalar can: not with -rbm_reduced_part_cycle local (its cycle is per rank).
+    bool hasScalarSolve() const { return !useLocalCycle_; }
     // CG iterations of the last apply (0 when K⁻¹ is one cycle).
     int lastIterations() const { return lastIterations_; }
 

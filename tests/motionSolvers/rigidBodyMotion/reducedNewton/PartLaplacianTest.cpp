@@ -111,6 +111,55 @@ TEST(PartLaplacian, APreconditionerNamedForTheCycleIsPetscsOnPetscsK)
     for (double value : solution) ASSERT_TRUE(std::isfinite(value));
 }
 
+TEST(PartLaplacian, TheScalarSolveIsTheWholeFactorisationsOnEveryUnknownNodeGhostsIncluded)
+{
+    // s = K⁻¹ b (the turned start's harmonic share) by CG with the parts' cycle to 1e-12, against
+    // the whole problem's factorised scalar solve (no sliding side: K alone). The CG multiplies by
+    // K as the cycle reads it, in single precision: equal to 10⁻⁶ of the largest entry (measured
+    // 6·10⁻⁸; a ghost without its owner's value would be off by the entry itself).
+    const DecomposedBox box(nx, ny, nz, rbm::test::scatteredDecomposition);
+    std::vector<NodeConstraint> wholeConstraints = constraintsOf(box);
+    for (NodeConstraint& constraint : wholeConstraints)
+        if (constraint.kind == NodeKind::sliding) constraint = NodeConstraint{};
+    const RbmProblem whole(3, box.mesh.points, box.graph, wholeConstraints);
+    LaplacianPreconditioner factorised(whole, LinearSolverKind::direct, 1e-12);
+    ASSERT_TRUE(factorised.hasScalarSolve());
+    std::vector<double> wholeRight, expected(static_cast<std::size_t>(whole.unknownNodeCount()));
+    for (int a = 0; a < whole.unknownNodeCount(); ++a) wholeRight.push_back(rightHandSideAt(whole.referencePoints()[whole.unknownNodes()[a]]).x);
+    ASSERT_TRUE(factorised.solveScalar(wholeRight, expected));
+
+    const MeshPart part(PETSC_COMM_WORLD, box.localCells(rbm::test::worldRank()));
+    std::vector<NodeConstraint> constraints;
+    for (Label g : part.nodeGlobalIds()) constraints.push_back(wholeConstraints[g]);
+    const RbmProblem problem = partProblem(3, part, constraints);
+    PartLaplacian laplacian(problem, coupledDisplacementLaplacian(problem), 1e-10, false);
+    laplacian.setUp();
+    ASSERT_TRUE(laplacian.hasScalarSolve());
+    std::vector<double> right, solution(static_cast<std::size_t>(problem.unknownNodeCount()), 7.0);
+    for (int a = 0; a < problem.unknownNodeCount(); ++a) right.push_back(rightHandSideAt(problem.referencePoints()[problem.unknownNodes()[a]]).x);
+    ASSERT_TRUE(laplacian.solveScalar(right, solution, 1e-12, 200));
+    double scale = 0.0;
+    for (double value : expected) scale = std::max(scale, std::abs(value));
+    for (int a = 0; a < problem.unknownNodeCount(); ++a) {
+        const int wholeRow = whole.unknownIndex()[part.nodeGlobalIds()[problem.unknownNodes()[a]]];
+        EXPECT_NEAR(solution[a], expected[wholeRow], 1e-6 * scale) << (a < problem.ownedUnknownCount() ? "owned" : "ghost");
+    }
+}
+
+TEST(PartLaplacian, TheRanksOwnCycleHasNoScalarSolve)
+{
+    const ScopedPetscOptions local(std::vector<std::pair<std::string, std::string>>{{"-rbm_reduced_part_cycle", "local"}});
+    const DecomposedBox box(nx, ny, nz, rbm::test::blockDecomposition(nx, ny));
+    const std::vector<NodeConstraint> wholeConstraints = constraintsOf(box);
+    const MeshPart part(PETSC_COMM_WORLD, box.localCells(rbm::test::worldRank()));
+    std::vector<NodeConstraint> constraints;
+    for (Label g : part.nodeGlobalIds()) constraints.push_back(wholeConstraints[g]);
+    const RbmProblem problem = partProblem(3, part, constraints);
+    PartLaplacian laplacian(problem, coupledDisplacementLaplacian(problem), 1e-10, false);
+    laplacian.setUp();
+    EXPECT_FALSE(laplacian.hasScalarSolve());
+}
+
 TEST(PartLaplacian, AnUnknownCycleIsNamed)
 {
     const ScopedPetscOptions wrong(std::vector<std::pair<std::string, std::string>>{{"-rbm_reduced_part_cycle", "jacobi"}});
