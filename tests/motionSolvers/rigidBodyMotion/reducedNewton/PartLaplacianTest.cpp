@@ -31,6 +31,14 @@ constexpr Label nx = 7, ny = 6, nz = 5;
 
 std::vector<NodeConstraint> constraintsOf(const DecomposedBox& box) { return rbm::test::boxConstraints(box, Vector3{1.0, 0.2, 0.0}); }
 
+// The whole box's constraints of the part's nodes.
+std::vector<NodeConstraint> partConstraints(const MeshPart& part, const std::vector<NodeConstraint>& wholeConstraints)
+{
+    std::vector<NodeConstraint> constraints;
+    for (Label g : part.nodeGlobalIds()) constraints.push_back(wholeConstraints[g]);
+    return constraints;
+}
+
 Vector3 rightHandSideAt(const Vector3& x) { return {std::sin(4 * x.x + x.y), x.z - 0.3, std::cos(3 * x.y) * x.x}; }
 
 std::vector<double> rightHandSide(const RbmProblem& problem)
@@ -54,9 +62,7 @@ void checkPartAgainstWhole(const rbm::test::BoxDecomposition& decomposition)
     ASSERT_TRUE(factorised.apply(wholeRight, expected));
 
     const MeshPart part(PETSC_COMM_WORLD, box.localCells(rbm::test::worldRank()));
-    std::vector<NodeConstraint> constraints;
-    for (Label g : part.nodeGlobalIds()) constraints.push_back(wholeConstraints[g]);
-    const RbmProblem problem = partProblem(3, part, constraints);
+    const RbmProblem problem = partProblem(3, part, partConstraints(part, wholeConstraints));
     PartLaplacian laplacian(problem, coupledDisplacementLaplacian(problem), 1e-10, true);
     laplacian.setUp();  // the array above is a temporary: the matrix holds its copy
     const std::vector<double> right = rightHandSide(problem);
@@ -100,9 +106,7 @@ TEST(PartLaplacian, APreconditionerNamedForTheCycleIsPetscsOnPetscsK)
     const DecomposedBox box(nx, ny, nz, rbm::test::blockDecomposition(nx, ny));
     const std::vector<NodeConstraint> wholeConstraints = constraintsOf(box);
     const MeshPart part(PETSC_COMM_WORLD, box.localCells(rbm::test::worldRank()));
-    std::vector<NodeConstraint> constraints;
-    for (Label g : part.nodeGlobalIds()) constraints.push_back(wholeConstraints[g]);
-    const RbmProblem problem = partProblem(3, part, constraints);
+    const RbmProblem problem = partProblem(3, part, partConstraints(part, wholeConstraints));
     PartLaplacian laplacian(problem, coupledDisplacementLaplacian(problem), 1e-10, false);
     laplacian.setUp();
     const std::vector<double> right = rightHandSide(problem);
@@ -129,9 +133,7 @@ TEST(PartLaplacian, TheScalarSolveIsTheWholeFactorisationsOnEveryUnknownNodeGhos
     ASSERT_TRUE(factorised.solveScalar(wholeRight, expected));
 
     const MeshPart part(PETSC_COMM_WORLD, box.localCells(rbm::test::worldRank()));
-    std::vector<NodeConstraint> constraints;
-    for (Label g : part.nodeGlobalIds()) constraints.push_back(wholeConstraints[g]);
-    const RbmProblem problem = partProblem(3, part, constraints);
+    const RbmProblem problem = partProblem(3, part, partConstraints(part, wholeConstraints));
     PartLaplacian laplacian(problem, coupledDisplacementLaplacian(problem), 1e-10, false);
     laplacian.setUp();
     ASSERT_TRUE(laplacian.hasScalarSolve());
@@ -152,9 +154,7 @@ TEST(PartLaplacian, TheRanksOwnCycleHasNoScalarSolve)
     const DecomposedBox box(nx, ny, nz, rbm::test::blockDecomposition(nx, ny));
     const std::vector<NodeConstraint> wholeConstraints = constraintsOf(box);
     const MeshPart part(PETSC_COMM_WORLD, box.localCells(rbm::test::worldRank()));
-    std::vector<NodeConstraint> constraints;
-    for (Label g : part.nodeGlobalIds()) constraints.push_back(wholeConstraints[g]);
-    const RbmProblem problem = partProblem(3, part, constraints);
+    const RbmProblem problem = partProblem(3, part, partConstraints(part, wholeConstraints));
     PartLaplacian laplacian(problem, coupledDisplacementLaplacian(problem), 1e-10, false);
     laplacian.setUp();
     EXPECT_FALSE(laplacian.hasScalarSolve());
