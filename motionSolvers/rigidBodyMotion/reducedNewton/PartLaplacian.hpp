@@ -17,27 +17,29 @@
 // is M itself, one cycle per component: the Newton CG is flexible. On the 2.2·10⁵-cell cube
 // on 2 ranks the step took 13 s with one cycle and 60 s solving to 10⁻⁴ (a loaded machine).
 //
-// C is by default one cycle of rbm's two-level smoothed aggregation over the ranks
-// (DistributedAggregation.hpp: aggregates of each rank's own rows, P smoothed with the whole K,
-// Chebyshev smoothing with K, one GAMG cycle of Pᵀ K P); after its set-up the fine level reads K
-// in single precision (SinglePrecisionPartLaplacian.hpp) and PETSc's K is released, unless
-// -rbm_reduced_inner_solve needs it for A. With -rbm_reduced_part_cycle gamg, or when a
-// preconditioner is named for the cycle (-rbm_reduced_cycle_pc_type ...), C is PETSc's
-// preconditioner of PETSc's K, GAMG unless named: GAMG's first coarsening (MIS-2 over the ranks)
-// was the peak of a rank's memory. Measured on the 10⁶-cell cube turned 30° on 2 ranks, one
-// thread each: GAMG 1 254 MiB on the larger rank, 5 Newton iterations; rbm's cycle 1 013 MiB,
-// 6 Newton iterations, each cheaper (docs/parallel.md). With -rbm_reduced_part_cycle local it is
-// block Jacobi over the ranks: rbm's own smoothed-aggregation cycle (ThreeVectorMultigrid, the
-// serial 3D solver's) of the block of K that couples the rank's owned unknowns, the couplings to
-// other ranks left out, and no matrix over the ranks is assembled: 17 Newton iterations on the
-// same cube (the weaker cycle makes the truncated Newton steps worse).
+// C is by default rbm's two-level cycle over the ranks on the three components at once
+// (PartThreeVectorCycle.hpp: aggregates of each rank's own rows, P smoothed with the whole K,
+// Chebyshev smoothing with K in single precision, one GAMG cycle of Pᵀ K P per component); after
+// its set-up PETSc's K is released, unless -rbm_reduced_inner_solve needs it for A. With
+// -rbm_reduced_part_cycle gamg, or when a preconditioner is named for the cycle
+// (-rbm_reduced_cycle_pc_type ...), C is PETSc's preconditioner of PETSc's K per component, GAMG
+// unless named: GAMG's first coarsening (MIS-2 over the ranks) was the peak of a rank's memory.
+// Measured on the 10⁶-cell cube turned 30° on 2 ranks, one thread each (docs/parallel.md):
+// GAMG 1 254 MiB on the larger rank; rbm's cycle 1 034 MiB, and with the turned start 4 Newton
+// iterations of 18 s of wall time where GAMG's took 5 of 28 s. With -rbm_reduced_part_cycle
+// local it is block Jacobi over the ranks: rbm's own smoothed-aggregation cycle
+// (ThreeVectorMultigrid, the serial 3D solver's) of the block of K that couples the rank's owned
+// unknowns, the couplings to other ranks left out, and no matrix over the ranks is assembled: 17
+// Newton iterations on the same cube (the weaker cycle makes the truncated Newton steps worse),
+// and no scalar solve (so no turned start).
 //
 // Unknown rows: each rank's owned unknown nodes in their part order, after the lower ranks'
 // (one contiguous range per rank); a ghost unknown's row comes from its owner through the
 // node exchange. Setup and every apply are collective.
 //
-// PETSc options: prefix rbm_reduced_ for the CG on A (-rbm_reduced_ksp_monitor, ...) and
-// rbm_reduced_cycle_ for the cycle (-rbm_reduced_cycle_pc_type hypre, ...).
+// PETSc options: prefix rbm_reduced_ for the CG on A (-rbm_reduced_ksp_monitor, ...),
+// rbm_reduced_cycle_coarse_ for the coarse level of rbm's cycle, and rbm_reduced_cycle_ for
+// PETSc's cycle (-rbm_reduced_cycle_pc_type hypre, ...).
 
 #include "PetscSupport.hpp"
 #include "RbmProblem.hpp"
