@@ -51,6 +51,13 @@ std::vector<double> rightHandSide(const RbmProblem& problem)
     return r;
 }
 
+// This rank's part of the box split in blocks, with the box's constraints.
+struct BlockPart {
+    DecomposedBox box{nx, ny, nz, rbm::test::blockDecomposition(nx, ny)};
+    MeshPart part{PETSC_COMM_WORLD, box.localCells(rbm::test::worldRank())};
+    RbmProblem problem{partProblem(3, part, partConstraints(part, constraintsOf(box)))};
+};
+
 void checkPartAgainstWhole(const rbm::test::BoxDecomposition& decomposition)
 {
     const DecomposedBox box(nx, ny, nz, decomposition);
@@ -103,10 +110,8 @@ TEST(PartLaplacian, APreconditionerNamedForTheCycleIsPetscsOnPetscsK)
     // cycle would read its single-precision K (a shell PETSc cannot factorise).
     const ScopedPetscOptions factorisation(std::vector<std::pair<std::string, std::string>>{
         {"-rbm_reduced_cycle_pc_type", "cholesky"}, {"-rbm_reduced_cycle_pc_factor_mat_solver_type", "mumps"}});
-    const DecomposedBox box(nx, ny, nz, rbm::test::blockDecomposition(nx, ny));
-    const std::vector<NodeConstraint> wholeConstraints = constraintsOf(box);
-    const MeshPart part(PETSC_COMM_WORLD, box.localCells(rbm::test::worldRank()));
-    const RbmProblem problem = partProblem(3, part, partConstraints(part, wholeConstraints));
+    const BlockPart block;
+    const RbmProblem& problem = block.problem;
     PartLaplacian laplacian(problem, coupledDisplacementLaplacian(problem), 1e-10, false);
     laplacian.setUp();
     const std::vector<double> right = rightHandSide(problem);
@@ -151,10 +156,8 @@ TEST(PartLaplacian, TheScalarSolveIsTheWholeFactorisationsOnEveryUnknownNodeGhos
 TEST(PartLaplacian, TheRanksOwnCycleHasNoScalarSolve)
 {
     const ScopedPetscOptions local(std::vector<std::pair<std::string, std::string>>{{"-rbm_reduced_part_cycle", "local"}});
-    const DecomposedBox box(nx, ny, nz, rbm::test::blockDecomposition(nx, ny));
-    const std::vector<NodeConstraint> wholeConstraints = constraintsOf(box);
-    const MeshPart part(PETSC_COMM_WORLD, box.localCells(rbm::test::worldRank()));
-    const RbmProblem problem = partProblem(3, part, partConstraints(part, wholeConstraints));
+    const BlockPart block;
+    const RbmProblem& problem = block.problem;
     PartLaplacian laplacian(problem, coupledDisplacementLaplacian(problem), 1e-10, false);
     laplacian.setUp();
     EXPECT_FALSE(laplacian.hasScalarSolve());
@@ -163,12 +166,8 @@ TEST(PartLaplacian, TheRanksOwnCycleHasNoScalarSolve)
 TEST(PartLaplacian, AnUnknownCycleIsNamed)
 {
     const ScopedPetscOptions wrong(std::vector<std::pair<std::string, std::string>>{{"-rbm_reduced_part_cycle", "jacobi"}});
-    const DecomposedBox box(nx, ny, nz, rbm::test::blockDecomposition(nx, ny));
-    const MeshPart part(PETSC_COMM_WORLD, box.localCells(rbm::test::worldRank()));
-    std::vector<NodeConstraint> constraints;
-    const std::vector<NodeConstraint> wholeConstraints = constraintsOf(box);
-    for (Label g : part.nodeGlobalIds()) constraints.push_back(wholeConstraints[g]);
-    const RbmProblem problem = partProblem(3, part, constraints);
+    const BlockPart block;
+    const RbmProblem& problem = block.problem;
     try {
         PartLaplacian laplacian(problem, coupledDisplacementLaplacian(problem), 1e-10, true);
         FAIL() << "no error";
