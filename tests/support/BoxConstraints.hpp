@@ -3,6 +3,7 @@
 // prescribed, the x-min side sliding on planes with the given normal, every other node free.
 
 #include "DecomposedBox.hpp"
+#include "MeshPart.hpp"
 #include "RbmProblem.hpp"
 
 #include <vector>
@@ -17,6 +18,15 @@ inline std::vector<motion::NodeConstraint> boxConstraints(const DecomposedBox& b
         constraints[p] = {NodeKind::sliding, slidingNormal};
     for (const char* name : {"zMin", "zMax"})
         for (Label p : patchMeshPoints(box.mesh, box.mesh.findPatch(name))) constraints[p] = {NodeKind::prescribed};
+    return constraints;
+}
+
+// The whole box's constraints of one rank's part, node by node.
+inline std::vector<motion::NodeConstraint> partConstraints(const motion::MeshPart& part,
+                                                           const std::vector<motion::NodeConstraint>& wholeConstraints)
+{
+    std::vector<motion::NodeConstraint> constraints;
+    for (Label g : part.nodeGlobalIds()) constraints.push_back(wholeConstraints[g]);
     return constraints;
 }
 

@@ -92,9 +92,7 @@ void checkPartAgainstWhole(const rbm::test::BoxDecomposition& decomposition)
     const Evaluation expected = evaluate(whole);
 
     const MeshPart part(PETSC_COMM_WORLD, box.localCells(rbm::test::worldRank()));
-    std::vector<NodeConstraint> constraints;
-    for (Label g : part.nodeGlobalIds()) constraints.push_back(wholeConstraints[g]);
-    const RbmProblem problem = partProblem(3, part, constraints);
+    const RbmProblem problem = partProblem(3, part, rbm::test::partConstraints(part, wholeConstraints));
     ASSERT_TRUE(problem.isPart());
     ASSERT_EQ(problem.ownedNodeCount(), part.ownedNodeCount());
     const Evaluation evaluated = evaluate(problem);
@@ -175,9 +173,7 @@ void checkSolveAgainstWhole(const rbm::test::BoxDecomposition& decomposition, Co
     const std::vector<NodeConstraint> wholeConstraints = constraintsOfBox(box);
     const RbmProblem whole(3, box.mesh.points, box.graph, wholeConstraints);
     const MeshPart part(PETSC_COMM_WORLD, box.localCells(rbm::test::worldRank()));
-    std::vector<NodeConstraint> constraints;
-    for (Label g : part.nodeGlobalIds()) constraints.push_back(wholeConstraints[g]);
-    const RbmProblem problem = partProblem(3, part, constraints);
+    const RbmProblem problem = partProblem(3, part, rbm::test::partConstraints(part, wholeConstraints));
     if (lastRankOwnsNoUnknown && rbm::test::worldSize() > 1 && rbm::test::worldRank() == rbm::test::worldSize() - 1) {
         EXPECT_EQ(problem.ownedUnknownCount(), 0);
         EXPECT_GT(problem.unknownNodeCount(), 0) << "its ghosts";
@@ -233,9 +229,7 @@ TEST(PartProblem, TheTurnedStartOnThePartsIsTheWholeProblems)
     const std::vector<NodeConstraint> wholeConstraints = lidConstraints(box);
     const RbmProblem whole(3, box.mesh.points, box.graph, wholeConstraints);
     const MeshPart part(PETSC_COMM_WORLD, box.localCells(rbm::test::worldRank()));
-    std::vector<NodeConstraint> constraints;
-    for (Label g : part.nodeGlobalIds()) constraints.push_back(wholeConstraints[g]);
-    const RbmProblem problem = partProblem(3, part, constraints);
+    const RbmProblem problem = partProblem(3, part, rbm::test::partConstraints(part, wholeConstraints));
     LaplacianPreconditioner wholeInverse(whole, LinearSolverKind::direct, 1e-12);
     LaplacianPreconditioner partInverse(problem, LinearSolverKind::automatic, 1e-6);
     std::vector<Vector3> wholeStart(static_cast<std::size_t>(whole.nodeCount())), partStart(static_cast<std::size_t>(problem.nodeCount()));

@@ -31,13 +31,7 @@ constexpr Label nx = 7, ny = 6, nz = 5;
 
 std::vector<NodeConstraint> constraintsOf(const DecomposedBox& box) { return rbm::test::boxConstraints(box, Vector3{1.0, 0.2, 0.0}); }
 
-// The whole box's constraints of the part's nodes.
-std::vector<NodeConstraint> partConstraints(const MeshPart& part, const std::vector<NodeConstraint>& wholeConstraints)
-{
-    std::vector<NodeConstraint> constraints;
-    for (Label g : part.nodeGlobalIds()) constraints.push_back(wholeConstraints[g]);
-    return constraints;
-}
+using rbm::test::partConstraints;
 
 Vector3 rightHandSideAt(const Vector3& x) { return {std::sin(4 * x.x + x.y), x.z - 0.3, std::cos(3 * x.y) * x.x}; }
 

@@ -61,10 +61,7 @@ struct PartCase {
 
     RbmProblem makeProblem() const
     {
-        const std::vector<NodeConstraint> whole = rbm::test::boxConstraints(box, Vector3{1.0, 0.2, 0.0});
-        std::vector<NodeConstraint> constraints;
-        for (Label g : part.nodeGlobalIds()) constraints.push_back(whole[g]);
-        return partProblem(3, part, constraints);
+        return partProblem(3, part, rbm::test::partConstraints(part, rbm::test::boxConstraints(box, Vector3{1.0, 0.2, 0.0})));
     }
 
     // Three smooth and rough fields at the owned unknowns, by position (the same on any ranks).

@@ -37,9 +37,7 @@ void checkAgainstWhole(const rbm::test::BoxDecomposition& decomposition)
     const BlockPattern& wholePattern = whole.blockPattern();
 
     const MeshPart part(PETSC_COMM_WORLD, box.localCells(rbm::test::worldRank()));
-    std::vector<NodeConstraint> constraints;
-    for (Label g : part.nodeGlobalIds()) constraints.push_back(wholeConstraints[g]);
-    const RbmProblem problem = partProblem(3, part, constraints);
+    const RbmProblem problem = partProblem(3, part, rbm::test::partConstraints(part, wholeConstraints));
     const SinglePrecisionPartLaplacian single(problem, coupledDisplacementLaplacian(problem));
 
     const int owned = problem.ownedUnknownCount();
