@@ -42,7 +42,7 @@ profileHeading "Memory profile of \`mpirun -np $ranks $(basename "$program") -ca
 # the first frame, from the allocation outwards, that itemOf names.
 items='function itemOf(frame) {
     if (frame ~ /PartLaplacian::assemble/) return "the scalar K as a PETSc MPIAIJ matrix (PartLaplacian::assemble)"
-    if (frame ~ /setUpAggregationCycle|distributedSmoothedProlongator/) return "the parts'"'"' cycle: P and its set-up'"'"'s products KT, PᵀKP (DistributedAggregation)"
+    if (frame ~ /PartThreeVectorCycle::PartThreeVectorCycle|galerkinOperator|distributedSmoothedProlongator/) return "the parts'"'"' cycle: P and its set-up'"'"'s products KT, PᵀKP (DistributedAggregation)"
     if (frame ~ /SinglePrecisionPartLaplacian/) return "K in single precision, the cycle'"'"'s fine level (SinglePrecisionPartLaplacian)"
     if (frame ~ /PCSetUp_GAMG|PCGAMG|MatCoarsen/) return "PETSc GAMG hierarchy of that matrix (PCSetUp_GAMG: coarsening graph, prolongators, Galerkin products)"
     if (frame ~ /KSPSetUp|KSPSolve|PCSetUp|PCApply|VecDuplicate|KSPCreateVecs/) return "other PETSc solver work (vectors, smoothers)"
